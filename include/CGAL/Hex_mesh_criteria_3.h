@@ -1,0 +1,171 @@
+// Copyright (c) 2026  Hex_meshing_3 project authors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Author(s)     : Hex_meshing_3 developers
+#ifndef CGAL_HEX_MESH_CRITERIA_3_H
+#define CGAL_HEX_MESH_CRITERIA_3_H
+
+// Sizes are lengths in the input's unit. A cell's size is its longest edge. Refinement is
+// isotropic here (1 -> 8); a size s is realised as (initial edge) / 2^k <= s.
+
+#include <CGAL/Bbox_3.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Hex_meshing_3 {
+
+/*!
+ * \ingroup PkgHexMeshing3Criteria
+ * \brief what a refinement criterion sees of a cell: its lattice address, its 8 corners
+ * (VTK order) and whether the surface cuts it.
+ *
+ * Lattice address: on each axis a the initial grid has `n_a` cells; a cell at level `level[a]`
+ * has index `index[a]` in [0, n_a 2^level[a]).
+ */
+template <typename GeomTraits>
+struct Cell_3
+{
+  typedef typename GeomTraits::FT      FT;
+  typedef typename GeomTraits::Point_3 Point_3;
+  std::array<std::uint32_t, 3> index;
+  std::array<std::uint8_t, 3> level;
+  std::array<Point_3, 8> corners;
+  bool is_cut = false;          ///< the cell's hull meets the surface (exact test)
+
+  /// length of the longest of the 12 edges
+  FT size() const
+  {
+    static const int e[12][2] = {{0,1},{3,2},{4,5},{7,6},{0,3},{1,2},{4,7},{5,6},{0,4},{1,5},{2,6},{3,7}};
+    FT m2 = 0;
+    for(const auto& ed : e) m2 = (std::max)(m2, CGAL::squared_distance(corners[ed[0]], corners[ed[1]]));
+    return CGAL::approximate_sqrt(m2);
+  }
+  /// the average of the corners
+  Point_3 center() const
+  {
+    FT x = 0, y = 0, z = 0;
+    for(const Point_3& p : corners) { x += p.x(); y += p.y(); z += p.z(); }
+    return Point_3(x / 8, y / 8, z / 8);
+  }
+  Bbox_3 bbox() const
+  {
+    Bbox_3 b = corners[0].bbox();
+    for(int k = 1; k < 8; ++k) b += corners[k].bbox();
+    return b;
+  }
+};
+
+} // namespace Hex_meshing_3
+
+/*!
+ * \ingroup PkgHexMeshing3Criteria
+ * \brief the refinement criteria of `make_hex_mesh_3()`: an aggregate of elementary criteria, each
+ * saying "this cell is bad, split it with this priority" or nothing, as `Mesh_criteria_3` does.
+ *
+ * Model of `HexMeshCriteria_3`. Elementary criteria, in order:
+ * - cell size: every cell's size is at most `cell_size` (a number or a field of the position);
+ * - surface size: every cell cut by the surface has size at most `surface_size`;
+ * - refinement boxes: every cell overlapping a box (with positive volume) has size at most the
+ *   box's size;
+ * - user criteria added by `add_criterion()`.
+ * No cell is split beyond `max_level` levels below the initial grid.
+ *
+ * \tparam GeomTraits a model of `Kernel`
+ */
+template <typename GeomTraits>
+class Hex_mesh_criteria_3
+{
+public:
+  typedef GeomTraits                          Geom_traits;
+  typedef typename GeomTraits::FT             FT;
+  typedef typename GeomTraits::Point_3        Point_3;
+  typedef Hex_meshing_3::Cell_3<GeomTraits>   Cell;
+  typedef std::optional<FT>                   Is_cell_bad;   ///< empty: keep; value: split priority
+  typedef std::function<FT(const Point_3&)>   Size_field;    ///< a size as a function of position
+
+  /// \name Creation
+  /// @{
+  /// constant sizes; `surface_size` <= 0 means "same as `cell_size`"
+  Hex_mesh_criteria_3(FT cell_size, FT surface_size, int max_level = 12)
+    : m_cell_size_value(cell_size), m_surface_size_value(surface_size > 0 ? surface_size : cell_size),
+      m_max_level(max_level)
+  {}
+  /// sizes as fields evaluated at a cell's centre; `cell_size_bound` is the largest value the cell
+  /// field takes (it sets the initial grid)
+  Hex_mesh_criteria_3(Size_field cell_size, FT cell_size_bound, Size_field surface_size, int max_level = 12)
+    : m_cell_size_value(cell_size_bound), m_surface_size_value(cell_size_bound),
+      m_cell_size_field(std::move(cell_size)), m_surface_size_field(std::move(surface_size)),
+      m_max_level(max_level)
+  {}
+  /// @}
+
+  /// \name Settings
+  /// @{
+  /// cells overlapping `box` get size at most `size`
+  void add_refinement_box(const Bbox_3& box, FT size) { m_boxes.emplace_back(box, size); }
+  /// an extra elementary criterion, tested after the built-in ones
+  void add_criterion(std::function<Is_cell_bad(const Cell&)> extra) { m_extra.push_back(std::move(extra)); }
+  void set_max_level(int l) { m_max_level = l; }
+  /// @}
+
+  /// \name Access
+  /// @{
+  /// the size that sets the initial grid (the cell size, or the bound of the cell size field)
+  FT initial_size() const { return m_cell_size_value; }
+  FT surface_size() const { return m_surface_size_value; }
+  int max_level() const { return m_max_level; }
+  const std::vector<std::pair<Bbox_3, FT>>& refinement_boxes() const { return m_boxes; }
+  /// @}
+
+  /// is `c` bad? The first failing elementary criterion wins; the priority is the ratio of the
+  /// cell's size to the size asked (larger: split first).
+  Is_cell_bad operator()(const Cell& c) const
+  {
+    const int lvl = (std::max)({int(c.level[0]), int(c.level[1]), int(c.level[2])});
+    if(lvl >= m_max_level) return Is_cell_bad();
+    const FT s = c.size();
+    const FT cs = m_cell_size_field ? m_cell_size_field(c.center()) : m_cell_size_value;
+    if(exceeds(s, cs)) return Is_cell_bad(s / cs);
+    if(c.is_cut) {
+      const FT ss = m_surface_size_field ? m_surface_size_field(c.center()) : m_surface_size_value;
+      if(exceeds(s, ss)) return Is_cell_bad(s / ss);
+    }
+    if(!m_boxes.empty()) {
+      const Bbox_3 b = c.bbox();
+      for(const auto& rb : m_boxes)
+        if(exceeds(s, rb.second) && overlaps_with_volume(b, rb.first)) return Is_cell_bad(s / rb.second);
+    }
+    for(const auto& f : m_extra) {
+      Is_cell_bad r = f(c);
+      if(r) return r;
+    }
+    return Is_cell_bad();
+  }
+
+private:
+  // sizes are realised as (initial edge) / 2^k: a relative slack of 1e-9 keeps round-off in the
+  // corner coordinates from asking for one more level (a size comparison, not a geometric predicate)
+  static bool exceeds(FT s, FT target) { return s > target * FT(1 + 1e-9); }
+  static bool overlaps_with_volume(const Bbox_3& a, const Bbox_3& b)
+  {
+    for(int d = 0; d < 3; ++d)
+      if(!(a.min(d) < b.max(d) && b.min(d) < a.max(d))) return false;
+    return true;
+  }
+
+  FT m_cell_size_value, m_surface_size_value;
+  Size_field m_cell_size_field, m_surface_size_field;
+  int m_max_level;
+  std::vector<std::pair<Bbox_3, FT>> m_boxes;
+  std::vector<std::function<Is_cell_bad(const Cell&)>> m_extra;
+};
+
+} // namespace CGAL
+
+#endif // CGAL_HEX_MESH_CRITERIA_3_H

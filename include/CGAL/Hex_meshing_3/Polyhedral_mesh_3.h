@@ -1,0 +1,176 @@
+// Copyright (c) 2026  Hex_meshing_3 project authors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Author(s)     : Hex_meshing_3 developers
+#ifndef CGAL_HEX_MESHING_3_POLYHEDRAL_MESH_3_H
+#define CGAL_HEX_MESHING_3_POLYHEDRAL_MESH_3_H
+
+// The face-based (OpenFOAM polyMesh) view of a non-conformal hexahedral mesh. Each hexahedron
+// becomes a polyhedral cell: a hex face whose centre is a hanging node (finer cells beyond it) is
+// split into the four quarters facing them; any other face lists all the vertices lying on its
+// edges (hanging nodes on edges included). Faces are numbered as OpenFOAM requires: internal faces
+// first in upper-triangular order (sorted by owner, then neighbour, owner < neighbour, normal from
+// owner to neighbour), then boundary faces grouped by patch.
+
+#include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace CGAL {
+namespace Hex_meshing_3 {
+
+/*!
+ * \ingroup PkgHexMeshing3Mesh
+ * \brief the polyhedral (face-based) form of a `Hex_mesh_3`, as OpenFOAM stores meshes.
+ */
+struct Polyhedral_mesh_3
+{
+  typedef std::uint32_t Index;
+  struct Patch { std::string name; std::size_t start = 0, size = 0; };
+
+  std::vector<std::vector<Index>> faces;   ///< internal faces, then boundary faces by patch
+  std::vector<Index> owner;                ///< one per face
+  std::vector<Index> neighbour;            ///< one per internal face
+  std::vector<Patch> patches;              ///< as in the `Hex_mesh_3`, with their face ranges
+  std::size_t number_of_cells = 0;
+
+  std::size_t number_of_internal_faces() const { return neighbour.size(); }
+
+  /*!
+   * builds the faces of `mesh`.
+   * \throws std::logic_error if a face is found neither twice (internal) nor among the mesh's
+   *         boundary faces: the mesh is inconsistent.
+   */
+  template <typename HexMesh>
+  void build(const HexMesh& mesh)
+  {
+    faces.clear(); owner.clear(); neighbour.clear(); patches.clear();
+    number_of_cells = mesh.hexahedra.size();
+    typedef std::array<Index, 4> Key;
+    auto sorted = [](std::array<Index, 4> k) { std::sort(k.begin(), k.end()); return k; };
+    auto pair_key = [](Index a, Index b) {
+      return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+    };
+    std::unordered_map<std::uint64_t, Index> edge_mid;
+    std::unordered_map<std::uint64_t, std::vector<std::pair<Key, Index>>> face_centre;  // by 2 smallest
+    for(const auto& h : mesh.hanging_nodes) {
+      if(h.number_of_masters == 2) edge_mid[pair_key(h.masters[0], h.masters[1])] = h.vertex;
+      else {
+        const Key k = sorted(h.masters);
+        face_centre[pair_key(k[0], k[1])].push_back({k, h.vertex});
+      }
+    }
+    auto centre_of = [&](const Key& k, Index& c) {
+      auto it = face_centre.find(pair_key(k[0], k[1]));
+      if(it == face_centre.end()) return false;
+      for(const auto& e : it->second) if(e.first == k) { c = e.second; return true; }
+      return false;
+    };
+    auto mid_of = [&](Index a, Index b, Index& m) {
+      auto it = edge_mid.find(pair_key(a, b));
+      if(it == edge_mid.end()) return false;
+      m = it->second; return true;
+    };
+
+    struct Item { Key key; Index cell; Index poly; };
+    std::vector<Item> items;
+    std::vector<std::vector<Index>> polys;
+    items.reserve(6 * mesh.hexahedra.size());
+    polys.reserve(6 * mesh.hexahedra.size());
+    const auto& lf = hex_local_faces();
+    for(Index c = 0; c < mesh.hexahedra.size(); ++c) {
+      const auto& h = mesh.hexahedra[c];
+      for(const auto& f : lf) {
+        const Index q[4] = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+        Index ctr;
+        if(centre_of(sorted({{q[0], q[1], q[2], q[3]}}), ctr)) {
+          Index m[4];
+          for(int i = 0; i < 4; ++i)
+            if(!mid_of(q[i], q[(i + 1) % 4], m[i]))
+              throw std::logic_error("Polyhedral_mesh_3: a split face lacks an edge midpoint");
+          const std::array<std::array<Index, 4>, 4> sub = {{{{q[0], m[0], ctr, m[3]}}, {{m[0], q[1], m[1], ctr}},
+                                                          {{ctr, m[1], q[2], m[2]}}, {{m[3], ctr, m[2], q[3]}}}};
+          for(const auto& s : sub) {
+            items.push_back({sorted(s), c, Index(polys.size())});
+            polys.emplace_back(s.begin(), s.end());
+          }
+        } else {
+          std::vector<Index> p;
+          p.reserve(8);
+          for(int i = 0; i < 4; ++i) {
+            p.push_back(q[i]);
+            Index m;
+            if(mid_of(q[i], q[(i + 1) % 4], m)) p.push_back(m);
+          }
+          items.push_back({sorted({{q[0], q[1], q[2], q[3]}}), c, Index(polys.size())});
+          polys.push_back(std::move(p));
+        }
+      }
+    }
+    std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+      return a.key != b.key ? a.key < b.key : a.cell < b.cell; });
+
+    // boundary faces of the hex mesh, by key
+    std::vector<std::pair<Key, int>> bkeys;
+    bkeys.reserve(mesh.boundary_faces.size());
+    for(const auto& bf : mesh.boundary_faces) bkeys.push_back({sorted(bf.vertices), bf.patch});
+    std::sort(bkeys.begin(), bkeys.end());
+
+    struct Internal { Index own, nei, poly; };
+    struct Boundary { int patch; Index own, poly; };
+    std::vector<Internal> internal;
+    std::vector<Boundary> boundary;
+    for(std::size_t i = 0; i < items.size();) {
+      std::size_t j = i + 1;
+      while(j < items.size() && items[j].key == items[i].key) ++j;
+      if(j - i == 2) {
+        const Item& a = items[i];
+        const Item& b = items[i + 1];
+        // the owner's polygon, unless the neighbour's lists more vertices (then reversed)
+        Index poly = a.poly;
+        if(polys[b.poly].size() > polys[a.poly].size()) {
+          poly = b.poly;
+          std::reverse(polys[poly].begin() + 1, polys[poly].end());
+        }
+        internal.push_back({a.cell, b.cell, poly});
+      } else if(j - i == 1) {
+        auto it = std::lower_bound(bkeys.begin(), bkeys.end(), std::make_pair(items[i].key, -1));
+        if(it == bkeys.end() || it->first != items[i].key)
+          throw std::logic_error("Polyhedral_mesh_3: a face bounds one cell but is not a boundary face");
+        boundary.push_back({it->second, items[i].cell, items[i].poly});
+      } else
+        throw std::logic_error("Polyhedral_mesh_3: a face is shared by more than two cells");
+      i = j;
+    }
+    std::sort(internal.begin(), internal.end(), [](const Internal& a, const Internal& b) {
+      return a.own != b.own ? a.own < b.own : a.nei < b.nei; });
+    std::stable_sort(boundary.begin(), boundary.end(), [](const Boundary& a, const Boundary& b) {
+      return a.patch != b.patch ? a.patch < b.patch : a.own < b.own; });
+
+    faces.reserve(internal.size() + boundary.size());
+    for(const Internal& f : internal) {
+      faces.push_back(std::move(polys[f.poly])); owner.push_back(f.own); neighbour.push_back(f.nei);
+    }
+    patches.resize(mesh.patch_names.size());
+    for(std::size_t p = 0; p < patches.size(); ++p) patches[p].name = mesh.patch_names[p];
+    std::size_t k = 0;
+    for(std::size_t p = 0; p < patches.size(); ++p) {
+      patches[p].start = faces.size();
+      while(k < boundary.size() && boundary[k].patch == int(p)) {
+        faces.push_back(std::move(polys[boundary[k].poly])); owner.push_back(boundary[k].own); ++k;
+      }
+      patches[p].size = faces.size() - patches[p].start;
+    }
+    if(k != boundary.size()) throw std::logic_error("Polyhedral_mesh_3: a boundary face has an unknown patch");
+  }
+};
+
+} // namespace Hex_meshing_3
+} // namespace CGAL
+
+#endif

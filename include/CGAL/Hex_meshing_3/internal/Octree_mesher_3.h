@@ -1,0 +1,689 @@
+// Copyright (c) 2026  Hex_meshing_3 project authors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Author(s)     : Hex_meshing_3 developers
+#ifndef CGAL_HEX_MESHING_3_INTERNAL_OCTREE_MESHER_3_H
+#define CGAL_HEX_MESHING_3_INTERNAL_OCTREE_MESHER_3_H
+
+// The overlay grid: an initial Cartesian grid of n_x x n_y x n_z cells over the meshing box, each
+// refined as an octree.
+//
+// Lattice addresses: a node at level l has integer coordinates (x, y, z) with x in [0, n_x 2^l);
+// its children are at level l+1 with coordinates (2x + dx, 2y + dy, 2z + dz), stored contiguously
+// at `child + octant`, octant = dx + 2 dy + 4 dz. Corner positions are functions of an integer key
+// at a fixed finest level D: key k on axis a maps to lo_a (1 - t) + hi_a t, t = k / (n_a 2^D), so a
+// corner shared by several cells gets bit-identical coordinates, and the box is honoured exactly.
+//
+// Per-axis levels are carried in the public `Cell_3` so that directional refinement fits the same
+// address later; this mesher refines isotropically (1 -> 8).
+//
+// Pipeline: refine (criteria, level by level) -> balance (2:1 across faces and edges) ->
+// classify (components of uncut cells; inside test or seed; trimming) -> extract (vertices, hexahedra,
+// hanging nodes, boundary faces with patches).
+
+#include <CGAL/Hex_mesh_criteria_3.h>
+#include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+#include <CGAL/Hex_meshing_3/Status.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace CGAL {
+namespace Hex_meshing_3 {
+namespace internal {
+
+static const int k_corner_offset[8][3] = {{0,0,0},{1,0,0},{1,1,0},{0,1,0},{0,0,1},{1,0,1},{1,1,1},{0,1,1}};
+
+// Open-addressing hash map from 63-bit keys to 32-bit values (deterministic, no allocation per entry).
+class Key_map
+{
+public:
+  static constexpr std::uint64_t EMPTY = ~std::uint64_t(0);
+  void reserve(std::size_t n)
+  {
+    std::size_t cap = 16;
+    while(cap < 2 * n + 16) cap <<= 1;
+    m_keys.assign(cap, EMPTY); m_values.assign(cap, 0); m_mask = cap - 1; m_size = 0;
+  }
+  // returns the value stored for `key`, inserting `value` if absent; `inserted` tells which
+  std::uint32_t insert(std::uint64_t key, std::uint32_t value, bool& inserted)
+  {
+    if(2 * (m_size + 1) > m_keys.size()) grow();
+    std::size_t h = hash(key) & m_mask;
+    while(m_keys[h] != EMPTY) {
+      if(m_keys[h] == key) { inserted = false; return m_values[h]; }
+      h = (h + 1) & m_mask;
+    }
+    m_keys[h] = key; m_values[h] = value; ++m_size; inserted = true;
+    return value;
+  }
+  bool find(std::uint64_t key, std::uint32_t& value) const
+  {
+    if(m_keys.empty()) return false;
+    std::size_t h = hash(key) & m_mask;
+    while(m_keys[h] != EMPTY) {
+      if(m_keys[h] == key) { value = m_values[h]; return true; }
+      h = (h + 1) & m_mask;
+    }
+    return false;
+  }
+private:
+  static std::size_t hash(std::uint64_t k)
+  {
+    k ^= k >> 33; k *= 0xff51afd7ed558ccdULL; k ^= k >> 33; k *= 0xc4ceb9fe1a85ec53ULL; k ^= k >> 33;
+    return std::size_t(k);
+  }
+  void grow()
+  {
+    std::vector<std::uint64_t> keys; std::vector<std::uint32_t> values;
+    keys.swap(m_keys); values.swap(m_values);
+    reserve(keys.size());
+    bool ins;
+    for(std::size_t i = 0; i < keys.size(); ++i) if(keys[i] != EMPTY) insert(keys[i], values[i], ins);
+  }
+  std::vector<std::uint64_t> m_keys;
+  std::vector<std::uint32_t> m_values;
+  std::size_t m_mask = 0, m_size = 0;
+};
+
+template <typename MeshDomain, typename Criteria>
+class Octree_mesher_3
+{
+public:
+  typedef typename MeshDomain::Geom_traits GT;
+  typedef typename GT::FT                  FT;
+  typedef typename GT::Point_3             Point_3;
+  typedef Cell_3<GT>                       Cell;
+
+  static constexpr std::uint32_t NONE = ~std::uint32_t(0);
+  static constexpr int KEY_BITS = 21;
+
+  struct Node
+  {
+    std::uint32_t x, y, z;
+    std::uint32_t child = 0;     // first of 8 children; 0: leaf (no root is anyone's child)
+    std::uint32_t list = 0;      // index into m_lists of the triangles meeting the cell; 0: none
+    std::uint8_t level = 0;
+    std::uint8_t flags = 0;
+    bool is_leaf() const { return child == 0; }
+  };
+  enum Flags : std::uint8_t { CUT = 1, KEPT = 2 };
+
+  /// statistics of the last run
+  struct Statistics
+  {
+    std::size_t leaves = 0, cut_leaves = 0, kept_cells = 0, balance_splits = 0, components = 0, trimmed_cells = 0;
+    int max_level_reached = 0;
+    std::array<std::uint32_t, 3> initial_cells = {{0, 0, 0}};
+  };
+
+  Octree_mesher_3(const MeshDomain& domain, const Criteria& criteria, const Bbox_3& box)
+    : m_domain(domain), m_criteria(criteria), m_box(box)
+  {}
+
+  const Statistics& statistics() const { return m_stats; }
+
+  template <typename Visitor, typename HexMesh>
+  Status run(HexMesh& out, std::size_t max_cells, const std::optional<Point_3>& seed, Visitor& visitor)
+  {
+    out.clear();
+    Status status = Status::SUCCESS;
+    init_grid();                                    // throws Input_error on an unusable box/size
+    if(seed) locate_seed(*seed);                    // throws before any work on a bad seed
+    visitor.on_phase_begin("refine", leaf_count());
+    status = refine(max_cells, visitor);
+    visitor.on_phase_end("refine");
+    visitor.on_phase_begin("balance", leaf_count());
+    balance();
+    visitor.on_phase_end("balance");
+    visitor.on_phase_begin("classify", leaf_count());
+    classify(seed);
+    visitor.on_phase_end("classify");
+    visitor.on_phase_begin("extract", m_stats.kept_cells);
+    extract(out);
+    visitor.on_phase_end("extract");
+    return status;
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // grid set-up
+  void init_grid()
+  {
+    const FT size = m_criteria.initial_size();
+    if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
+      throw Input_error("the cell size must be a positive number");
+    m_D = m_criteria.max_level();
+    if(m_D < 0 || m_D > 20) throw Input_error("the maximum level must be in [0, 20]");
+    for(int a = 0; a < 3; ++a) {
+      m_lo[a] = m_box.min(a); m_hi[a] = m_box.max(a);
+      const double L = m_hi[a] - m_lo[a];
+      if(!(L > 0) || !std::isfinite(L)) throw Input_error("the meshing box is empty or not finite");
+      const double n = std::ceil(L / CGAL::to_double(size) * (1 - 1e-12));
+      if(n > double(1u << 20)) throw Input_error("the cell size is too small for the box (more than 2^20 cells per axis)");
+      m_n[a] = std::uint32_t((std::max)(1.0, n));
+    }
+    // coordinates at the finest level must fit in KEY_BITS bits (with one spare for neighbours)
+    while(m_D > 0 && (std::uint64_t((std::max)({m_n[0], m_n[1], m_n[2]})) << m_D) >= (std::uint64_t(1) << KEY_BITS))
+      --m_D;
+    m_stats = Statistics();
+    m_stats.initial_cells = m_n;
+    const std::size_t roots = std::size_t(m_n[0]) * m_n[1] * m_n[2];
+    if(roots > 200000000u) throw Input_error("the initial grid would have more than 2e8 cells; increase the cell size");
+    m_nodes.clear(); m_nodes.resize(roots);
+    m_lists.clear(); m_lists.emplace_back();   // slot 0 = no list
+    m_by_level.assign(m_D + 2, {});
+    m_by_level[0].reserve(roots);
+    for(std::uint32_t z = 0; z < m_n[2]; ++z)
+      for(std::uint32_t y = 0; y < m_n[1]; ++y)
+        for(std::uint32_t x = 0; x < m_n[0]; ++x) {
+          const std::uint32_t id = root_index(x, y, z);
+          Node& nd = m_nodes[id];
+          nd.x = x; nd.y = y; nd.z = z; nd.level = 0;
+          m_by_level[0].push_back(id);
+        }
+    // distribute the triangles to the root cells they meet (exact test)
+    const double h[3] = {(m_hi[0]-m_lo[0]) / m_n[0], (m_hi[1]-m_lo[1]) / m_n[1], (m_hi[2]-m_lo[2]) / m_n[2]};
+    for(std::size_t t = 0; t < m_domain.number_of_triangles(); ++t) {
+      const Bbox_3& tb = m_domain.triangle_bbox(t);
+      std::int64_t r0[3], r1[3];
+      bool outside = false;
+      for(int a = 0; a < 3; ++a) {
+        r0[a] = std::int64_t(std::floor((tb.min(a) - m_lo[a]) / h[a])) - 1;
+        r1[a] = std::int64_t(std::floor((tb.max(a) - m_lo[a]) / h[a])) + 1;
+        r0[a] = (std::max<std::int64_t>)(r0[a], 0);
+        r1[a] = (std::min<std::int64_t>)(r1[a], std::int64_t(m_n[a]) - 1);
+        if(r0[a] > r1[a]) outside = true;
+      }
+      if(outside) continue;
+      for(std::int64_t z = r0[2]; z <= r1[2]; ++z)
+        for(std::int64_t y = r0[1]; y <= r1[1]; ++y)
+          for(std::int64_t x = r0[0]; x <= r1[0]; ++x) {
+            const std::uint32_t id = root_index(std::uint32_t(x), std::uint32_t(y), std::uint32_t(z));
+            if(m_domain.do_intersect(node_bbox(m_nodes[id]), t)) {
+              Node& nd = m_nodes[id];
+              if(nd.list == 0) { nd.list = std::uint32_t(m_lists.size()); m_lists.emplace_back(); }
+              m_lists[nd.list].push_back(std::uint32_t(t));
+              nd.flags |= CUT;
+            }
+          }
+    }
+    m_leaves = roots;
+  }
+
+  std::size_t leaf_count() const { return m_leaves; }
+
+  // ---------------------------------------------------------------------------------------------
+  // geometry of lattice keys
+  double coord(int a, std::uint64_t key, int level) const
+  {
+    const double t = double(key) / double(std::uint64_t(m_n[a]) << level);
+    if(key == 0) return m_lo[a];
+    if(key == (std::uint64_t(m_n[a]) << level)) return m_hi[a];
+    return m_lo[a] * (1 - t) + m_hi[a] * t;
+  }
+  // positions depend on the key scaled to the finest level D only
+  double coord_at(int a, std::uint64_t key, int level) const { return coord(a, key << (m_D - level), m_D); }
+
+  Bbox_3 node_bbox(const Node& nd) const
+  {
+    const std::uint32_t c[3] = {nd.x, nd.y, nd.z};
+    return Bbox_3(coord_at(0, c[0], nd.level), coord_at(1, c[1], nd.level), coord_at(2, c[2], nd.level),
+                  coord_at(0, c[0] + 1, nd.level), coord_at(1, c[1] + 1, nd.level), coord_at(2, c[2] + 1, nd.level));
+  }
+
+  Cell make_cell(const Node& nd) const
+  {
+    Cell c;
+    c.index = {{nd.x, nd.y, nd.z}};
+    c.level = {{nd.level, nd.level, nd.level}};
+    const std::uint32_t v[3] = {nd.x, nd.y, nd.z};
+    double lo[3], hi[3];
+    for(int a = 0; a < 3; ++a) { lo[a] = coord_at(a, v[a], nd.level); hi[a] = coord_at(a, v[a] + 1, nd.level); }
+    for(int k = 0; k < 8; ++k)
+      c.corners[k] = Point_3(k_corner_offset[k][0] ? hi[0] : lo[0], k_corner_offset[k][1] ? hi[1] : lo[1],
+                             k_corner_offset[k][2] ? hi[2] : lo[2]);
+    c.is_cut = (nd.flags & CUT) != 0;
+    return c;
+  }
+
+  std::uint32_t root_index(std::uint32_t x, std::uint32_t y, std::uint32_t z) const
+  {
+    return x + m_n[0] * (y + m_n[1] * z);
+  }
+
+  // the deepest node of level <= l containing lattice cell (l, x, y, z); NONE outside the grid
+  std::uint32_t find(int l, std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    if(x < 0 || y < 0 || z < 0) return NONE;
+    const std::int64_t rx = x >> l, ry = y >> l, rz = z >> l;
+    if(rx >= m_n[0] || ry >= m_n[1] || rz >= m_n[2]) return NONE;
+    std::uint32_t id = root_index(std::uint32_t(rx), std::uint32_t(ry), std::uint32_t(rz));
+    int lev = 0;
+    while(m_nodes[id].child != 0 && lev < l) {
+      ++lev;
+      const int s = l - lev;
+      const std::uint32_t oct = std::uint32_t(((x >> s) & 1) | (((y >> s) & 1) << 1) | (((z >> s) & 1) << 2));
+      id = m_nodes[id].child + oct;
+    }
+    return id;
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // refinement
+  void split(std::uint32_t id)
+  {
+    const std::uint32_t first = std::uint32_t(m_nodes.size());
+    if(m_nodes.size() + 8 >= std::size_t(NONE)) throw Input_error("too many cells (more than 4e9 nodes)");
+    const Node parent = m_nodes[id];
+    m_nodes[id].child = first;
+    m_nodes.resize(m_nodes.size() + 8);
+    const int l = parent.level + 1;
+    for(int o = 0; o < 8; ++o) {
+      Node& c = m_nodes[first + o];
+      c.x = 2 * parent.x + (o & 1); c.y = 2 * parent.y + ((o >> 1) & 1); c.z = 2 * parent.z + ((o >> 2) & 1);
+      c.level = std::uint8_t(l);
+      m_by_level[l].push_back(first + o);
+    }
+    m_leaves += 7;
+    if(parent.list != 0) {
+      std::vector<std::uint32_t> tris;
+      tris.swap(m_lists[parent.list]);
+      m_nodes[id].list = 0;
+      Bbox_3 cb[8];
+      for(int o = 0; o < 8; ++o) cb[o] = node_bbox(m_nodes[first + o]);
+      for(std::uint32_t t : tris) {
+        const Bbox_3& tb = m_domain.triangle_bbox(t);
+        for(int o = 0; o < 8; ++o) {
+          if(!CGAL::do_overlap(cb[o], tb)) continue;
+          if(!m_domain.do_intersect(cb[o], t)) continue;
+          Node& c = m_nodes[first + o];
+          if(c.list == 0) {
+            // reuse the parent's slot for the first child that needs one
+            if(m_free_list.empty()) { c.list = std::uint32_t(m_lists.size()); m_lists.emplace_back(); }
+            else { c.list = m_free_list.back(); m_free_list.pop_back(); }
+          }
+          m_lists[c.list].push_back(t);
+          c.flags |= CUT;
+        }
+      }
+      m_free_list.push_back(parent.list);
+    }
+  }
+
+  template <typename Visitor>
+  Status refine(std::size_t max_cells, Visitor& visitor)
+  {
+    const int max_level = (std::min)(m_criteria.max_level(), m_D);
+    for(int l = 0; l < max_level; ++l) {
+      std::vector<std::uint32_t> bad;
+      const std::vector<std::uint32_t>& nodes = m_by_level[l];
+      for(std::size_t i = 0; i < nodes.size(); ++i) {
+        const Node& nd = m_nodes[nodes[i]];
+        if(!nd.is_leaf()) continue;
+        if(m_criteria(make_cell(nd))) bad.push_back(nodes[i]);
+        if((i & 0xFFFF) == 0xFFFF && !visitor.go_further(double(l) / max_level)) return Status::CANCELED;
+      }
+      if(bad.empty()) break;
+      if(m_leaves + 7 * bad.size() > max_cells) return Status::CELL_LIMIT_REACHED;
+      for(std::size_t i = 0; i < bad.size(); ++i) {
+        split(bad[i]);
+        if((i & 0x3FFF) == 0x3FFF && !visitor.go_further((l + double(i) / bad.size()) / max_level))
+          return Status::CANCELED;
+      }
+      if(!visitor.go_further(double(l + 1) / max_level)) return Status::CANCELED;
+    }
+    return Status::SUCCESS;
+  }
+
+  // 2:1 balance across every face and edge: processing levels from the finest down, a leaf at
+  // level l forces the leaves containing its face and edge neighbours to level >= l-1. Splits
+  // only create leaves of levels < l, which are visited later in the same sweep.
+  void balance()
+  {
+    int top = 0;
+    for(int l = 0; l < int(m_by_level.size()); ++l) if(!m_by_level[l].empty()) top = l;
+    for(int l = top; l >= 2; --l) {
+      for(std::size_t i = 0; i < m_by_level[l].size(); ++i) {
+        const Node nd = m_nodes[m_by_level[l][i]];
+        if(!nd.is_leaf()) continue;
+        for(int dz = -1; dz <= 1; ++dz)
+          for(int dy = -1; dy <= 1; ++dy)
+            for(int dx = -1; dx <= 1; ++dx) {
+              const int nz = (dx != 0) + (dy != 0) + (dz != 0);
+              if(nz == 0 || nz == 3) continue;   // faces and edges only
+              for(;;) {
+                const std::uint32_t j = find(l, std::int64_t(nd.x) + dx, std::int64_t(nd.y) + dy, std::int64_t(nd.z) + dz);
+                if(j == NONE || !m_nodes[j].is_leaf() || m_nodes[j].level >= l - 1) break;
+                split(j);
+                ++m_stats.balance_splits;
+              }
+            }
+      }
+    }
+  }
+
+  /// checks the 2:1 balance of every leaf against its face and edge neighbours
+  bool is_balanced() const
+  {
+    for(std::size_t id = 0; id < m_nodes.size(); ++id) {
+      const Node& nd = m_nodes[id];
+      if(!nd.is_leaf()) continue;
+      for(int dz = -1; dz <= 1; ++dz)
+        for(int dy = -1; dy <= 1; ++dy)
+          for(int dx = -1; dx <= 1; ++dx) {
+            const int nz = (dx != 0) + (dy != 0) + (dz != 0);
+            if(nz == 0 || nz == 3) continue;
+            const std::uint32_t j = find(nd.level, std::int64_t(nd.x) + dx, std::int64_t(nd.y) + dy, std::int64_t(nd.z) + dz);
+            if(j == NONE) continue;
+            if(m_nodes[j].is_leaf() && m_nodes[j].level + 1 < nd.level) return false;
+          }
+    }
+    return true;
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // face neighbours: the leaves across face f (axis f/2, side f%2) of leaf `id`
+  template <typename F>
+  void for_each_face_neighbour(std::uint32_t id, int f, F&& fn) const
+  {
+    const Node& nd = m_nodes[id];
+    const int a = f / 2, side = f % 2;
+    std::int64_t c[3] = {nd.x, nd.y, nd.z};
+    c[a] += side ? 1 : -1;
+    const std::uint32_t j = find(nd.level, c[0], c[1], c[2]);
+    if(j == NONE) return;
+    collect_face_leaves(j, a, side ? 0 : 1, fn);
+  }
+  template <typename F>
+  void collect_face_leaves(std::uint32_t j, int a, int offset, F& fn) const
+  {
+    const Node& nd = m_nodes[j];
+    if(nd.is_leaf()) { fn(j); return; }
+    for(int o = 0; o < 8; ++o)
+      if(((o >> a) & 1) == offset) collect_face_leaves(nd.child + o, a, offset, fn);
+  }
+
+  void locate_seed(const Point_3& p)
+  {
+    const double s[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    for(int a = 0; a < 3; ++a)
+      if(!(s[a] > m_lo[a] && s[a] < m_hi[a])) {
+        std::ostringstream os;
+        os << "the region seed (" << s[0] << ", " << s[1] << ", " << s[2] << ") is outside the meshing box ("
+           << m_lo[0] << ", " << m_lo[1] << ", " << m_lo[2] << ") - (" << m_hi[0] << ", " << m_hi[1] << ", " << m_hi[2] << ")";
+        throw Input_error(os.str());
+      }
+    if(m_domain.is_inside(p)) {
+      std::ostringstream os;
+      os << "the region seed (" << s[0] << ", " << s[1] << ", " << s[2] << ") is inside a body of the surface; "
+         << "it must lie in the region to mesh (the fluid around the bodies)";
+      throw Input_error(os.str());
+    }
+  }
+
+  std::uint32_t leaf_containing(const Point_3& p) const
+  {
+    const double s[3] = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+    std::int64_t k[3];
+    for(int a = 0; a < 3; ++a) {
+      const double K = double(std::uint64_t(m_n[a]) << m_D);
+      k[a] = std::int64_t(std::floor((s[a] - m_lo[a]) / (m_hi[a] - m_lo[a]) * K));
+      k[a] = (std::min<std::int64_t>)((std::max<std::int64_t>)(k[a], 0), std::int64_t(K) - 1);
+    }
+    return find(m_D, k[0], k[1], k[2]);
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // classification: components of uncut leaves (face adjacency), then the region
+  void classify(const std::optional<Point_3>& seed)
+  {
+    m_component.assign(m_nodes.size(), -1);
+    std::vector<std::uint32_t> first_of_component;
+    std::vector<std::uint32_t> queue;
+    for(std::uint32_t id = 0; id < m_nodes.size(); ++id) {
+      const Node& nd = m_nodes[id];
+      if(!nd.is_leaf()) continue;
+      ++m_stats.leaves;
+      if(nd.flags & CUT) { ++m_stats.cut_leaves; continue; }
+      if(m_component[id] >= 0) continue;
+      const int comp = int(first_of_component.size());
+      first_of_component.push_back(id);
+      m_component[id] = comp;
+      queue.clear(); queue.push_back(id);
+      for(std::size_t q = 0; q < queue.size(); ++q) {
+        const std::uint32_t cur = queue[q];
+        for(int f = 0; f < 6; ++f)
+          for_each_face_neighbour(cur, f, [&](std::uint32_t j) {
+            if(m_component[j] < 0 && !(m_nodes[j].flags & CUT)) { m_component[j] = comp; queue.push_back(j); }
+          });
+      }
+    }
+    m_stats.components = first_of_component.size();
+    for(const Node& nd : m_nodes) if(nd.is_leaf()) m_stats.max_level_reached = (std::max)(m_stats.max_level_reached, int(nd.level));
+
+    if(seed) {
+      const std::uint32_t s = leaf_containing(*seed);
+      if(m_nodes[s].flags & CUT) {
+        const double h = CGAL::to_double(make_cell(m_nodes[s]).size());
+        std::ostringstream os;
+        os << "the region seed (" << CGAL::to_double(seed->x()) << ", " << CGAL::to_double(seed->y()) << ", "
+           << CGAL::to_double(seed->z()) << ") lies in a cell cut by the surface; move it farther than " << h
+           << " from the surface";
+        throw Input_error(os.str());
+      }
+      const int comp = m_component[s];
+      for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+        if(m_nodes[id].is_leaf() && m_component[id] == comp) m_nodes[id].flags |= KEPT;
+    } else if(m_domain.has_exact_inside_test()) {
+      // closed input: a component of uncut cells lies on one side, one exact test decides it
+      std::vector<char> inside(first_of_component.size());
+      for(std::size_t c = 0; c < first_of_component.size(); ++c)
+        inside[c] = m_domain.is_inside(make_cell(m_nodes[first_of_component[c]]).center());
+      for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+        if(m_nodes[id].is_leaf() && m_component[id] >= 0 && inside[m_component[id]]) m_nodes[id].flags |= KEPT;
+    } else {
+      for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+        if(m_nodes[id].is_leaf() && m_component[id] >= 0 &&
+           m_domain.winding_number(make_cell(m_nodes[id]).center()) >= 0.5)
+          m_nodes[id].flags |= KEPT;
+    }
+    trim();
+    for(const Node& nd : m_nodes) if(nd.is_leaf() && (nd.flags & KEPT)) ++m_stats.kept_cells;
+  }
+
+  // Trimming: a kept cell whose kept face neighbours do not span the three axes (a finger or a
+  // plate of the staircase, one cell thick) would be an under-determined cell for a finite-volume
+  // solver (OpenFOAM's cell determinant is 0) and cannot carry a boundary layer; such cells are
+  // removed, repeatedly, until none is left.
+  void trim()
+  {
+    std::vector<std::uint32_t> work;
+    for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+      if(m_nodes[id].is_leaf() && (m_nodes[id].flags & KEPT)) work.push_back(id);
+    std::vector<std::uint32_t> next;
+    while(!work.empty()) {
+      next.clear();
+      for(std::uint32_t id : work) {
+        if(!(m_nodes[id].flags & KEPT)) continue;
+        bool axis_ok[3] = {false, false, false};
+        for(int f = 0; f < 6; ++f) {
+          if(axis_ok[f / 2]) continue;
+          for_each_face_neighbour(id, f, [&](std::uint32_t j) { if(m_nodes[j].flags & KEPT) axis_ok[f / 2] = true; });
+        }
+        if(axis_ok[0] && axis_ok[1] && axis_ok[2]) continue;
+        m_nodes[id].flags &= std::uint8_t(~KEPT);
+        ++m_stats.trimmed_cells;
+        for(int f = 0; f < 6; ++f)
+          for_each_face_neighbour(id, f, [&](std::uint32_t j) { if(m_nodes[j].flags & KEPT) next.push_back(j); });
+      }
+      std::sort(next.begin(), next.end());
+      next.erase(std::unique(next.begin(), next.end()), next.end());
+      work.swap(next);
+    }
+  }
+
+  // ---------------------------------------------------------------------------------------------
+  // extraction
+  std::uint64_t pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) const
+  {
+    return x | (y << KEY_BITS) | (z << (2 * KEY_BITS));
+  }
+
+  template <typename HexMesh>
+  void extract(HexMesh& out)
+  {
+    typedef typename HexMesh::Index Index;
+    out.clear();
+    out.box = m_box;
+    const char* box_names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+    for(int f = 0; f < 6; ++f) out.patch_names.push_back(box_names[f]);
+    for(const std::string& s : m_domain.patch_names()) out.patch_names.push_back(s);
+
+    const int D = m_stats.max_level_reached;   // keys at the finest level present
+    std::vector<std::uint32_t> kept;
+    kept.reserve(m_stats.kept_cells);
+    for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+      if(m_nodes[id].is_leaf() && (m_nodes[id].flags & KEPT)) kept.push_back(id);
+    std::vector<std::uint32_t> cell_of_node(m_nodes.size(), NONE);
+    for(std::size_t i = 0; i < kept.size(); ++i) cell_of_node[kept[i]] = std::uint32_t(i);
+
+    Key_map vmap;
+    vmap.reserve(kept.size() + kept.size() / 2 + 64);
+    std::vector<std::array<std::uint32_t, 3>> vkeys;
+    auto vertex = [&](std::uint64_t x, std::uint64_t y, std::uint64_t z) -> Index {
+      bool inserted;
+      const Index v = vmap.insert(pack(x, y, z), Index(vkeys.size()), inserted);
+      if(inserted) vkeys.push_back({{std::uint32_t(x), std::uint32_t(y), std::uint32_t(z)}});
+      return v;
+    };
+    auto corner_key = [&](const Node& nd, int k, std::uint64_t* c) {
+      const int s = D - nd.level;
+      c[0] = std::uint64_t(nd.x + k_corner_offset[k][0]) << s;
+      c[1] = std::uint64_t(nd.y + k_corner_offset[k][1]) << s;
+      c[2] = std::uint64_t(nd.z + k_corner_offset[k][2]) << s;
+    };
+
+    out.hexahedra.resize(kept.size());
+    out.cell_levels.resize(kept.size());
+    for(std::size_t i = 0; i < kept.size(); ++i) {
+      const Node& nd = m_nodes[kept[i]];
+      for(int k = 0; k < 8; ++k) {
+        std::uint64_t c[3]; corner_key(nd, k, c);
+        out.hexahedra[i][k] = vertex(c[0], c[1], c[2]);
+      }
+      out.cell_levels[i] = {{nd.level, nd.level, nd.level}};
+    }
+
+    // boundary faces; a face of a kept cell next to finer leaves that are only partly kept is
+    // split into the quarters facing them, creating the edge-midpoint / centre vertices it needs
+    const auto& lf = hex_local_faces();
+    std::vector<std::uint32_t> fine;
+    for(std::size_t i = 0; i < kept.size(); ++i) {
+      const Node& nd = m_nodes[kept[i]];
+      for(int f = 0; f < 6; ++f) {
+        const int a = f / 2, side = f % 2;
+        std::int64_t c[3] = {nd.x, nd.y, nd.z};
+        c[a] += side ? 1 : -1;
+        const std::uint32_t j = find(nd.level, c[0], c[1], c[2]);
+        std::array<Index, 4> quad;
+        for(int q = 0; q < 4; ++q) quad[q] = out.hexahedra[i][lf[f][q]];
+        if(j == NONE) { out.boundary_faces.push_back({quad, Index(i), f}); continue; }
+        if(m_nodes[j].is_leaf()) {
+          if(!(m_nodes[j].flags & KEPT)) out.boundary_faces.push_back({quad, Index(i), surface_patch(nd, f)});
+          continue;
+        }
+        fine.clear();
+        auto push_fine = [&](std::uint32_t x) { fine.push_back(x); };
+        collect_face_leaves(j, a, side ? 0 : 1, push_fine);
+        std::size_t nkept = 0;
+        for(std::uint32_t x : fine) if(m_nodes[x].flags & KEPT) ++nkept;
+        if(nkept == fine.size()) continue;                     // all internal
+        if(nkept == 0) { out.boundary_faces.push_back({quad, Index(i), surface_patch(nd, f)}); continue; }
+        CGAL_assertion(fine.size() == 4);
+        for(std::uint32_t x : fine) {
+          if(m_nodes[x].flags & KEPT) continue;
+          // the quarter of face f facing fine leaf x: the fine leaf's opposite face, keys at D
+          const Node& fx = m_nodes[x];
+          const auto& of = lf[f ^ 1];   // the fine leaf's face towards us, seen from it
+          std::array<Index, 4> sub;
+          for(int q = 0; q < 4; ++q) {
+            std::uint64_t k[3]; corner_key(fx, of[q], k);
+            sub[q] = vertex(k[0], k[1], k[2]);
+          }
+          std::swap(sub[1], sub[3]);     // reverse: outward from our cell
+          out.boundary_faces.push_back({sub, Index(i), surface_patch(nd, f)});
+        }
+      }
+    }
+
+    // hanging nodes: vertices at an edge midpoint or a face centre of a kept cell
+    std::vector<char> is_hanging(vkeys.size(), 0);
+    const auto& le = hex_local_edges();
+    for(std::size_t i = 0; i < kept.size(); ++i) {
+      const Node& nd = m_nodes[kept[i]];
+      if(nd.level >= D) continue;
+      std::uint64_t ck[8][3];
+      for(int k = 0; k < 8; ++k) corner_key(nd, k, ck[k]);
+      for(const auto& e : le) {
+        std::uint32_t v;
+        if(vmap.find(pack((ck[e[0]][0] + ck[e[1]][0]) / 2, (ck[e[0]][1] + ck[e[1]][1]) / 2,
+                          (ck[e[0]][2] + ck[e[1]][2]) / 2), v) && !is_hanging[v]) {
+          is_hanging[v] = 1;
+          out.hanging_nodes.push_back({Index(v), {{out.hexahedra[i][e[0]], out.hexahedra[i][e[1]], 0, 0}}, 2});
+        }
+      }
+      for(const auto& f : lf) {
+        std::uint32_t v;
+        if(vmap.find(pack((ck[f[0]][0] + ck[f[2]][0]) / 2, (ck[f[0]][1] + ck[f[2]][1]) / 2,
+                          (ck[f[0]][2] + ck[f[2]][2]) / 2), v) && !is_hanging[v]) {
+          is_hanging[v] = 1;
+          out.hanging_nodes.push_back({Index(v), {{out.hexahedra[i][f[0]], out.hexahedra[i][f[1]],
+                                                   out.hexahedra[i][f[2]], out.hexahedra[i][f[3]]}}, 4});
+        }
+      }
+    }
+
+    out.points.resize(vkeys.size());
+    for(std::size_t v = 0; v < vkeys.size(); ++v)
+      out.points[v] = Point_3(coord_at(0, vkeys[v][0], D), coord_at(1, vkeys[v][1], D), coord_at(2, vkeys[v][2], D));
+  }
+
+  int surface_patch(const Node& nd, int f) const
+  {
+    if(m_domain.patch_names().size() <= 1) return 6;
+    // the part of the triangle nearest to the face centre
+    const Cell c = make_cell(nd);
+    const auto& q = hex_local_faces()[f];
+    const Point_3 m = CGAL::centroid(c.corners[q[0]], c.corners[q[1]], c.corners[q[2]], c.corners[q[3]]);
+    return 6 + m_domain.patch(m_domain.closest_triangle(m));
+  }
+
+  const std::vector<Node>& nodes() const { return m_nodes; }
+
+private:
+  const MeshDomain& m_domain;
+  const Criteria& m_criteria;
+  Bbox_3 m_box;
+  double m_lo[3], m_hi[3];
+  std::array<std::uint32_t, 3> m_n;
+  int m_D = 0;
+  std::vector<Node> m_nodes;
+  std::vector<std::vector<std::uint32_t>> m_lists;
+  std::vector<std::uint32_t> m_free_list;
+  std::vector<std::vector<std::uint32_t>> m_by_level;
+  std::vector<int> m_component;
+  std::size_t m_leaves = 0;
+  Statistics m_stats;
+};
+
+} // namespace internal
+} // namespace Hex_meshing_3
+} // namespace CGAL
+
+#endif

@@ -1,0 +1,78 @@
+// Copyright (c) 2026  Hex_meshing_3 project authors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Author(s)     : Hex_meshing_3 developers
+#ifndef CGAL_HEX_MESHING_3_PARAMETERS_H
+#define CGAL_HEX_MESHING_3_PARAMETERS_H
+
+// The package's own named parameters. In CGAL 5.5 the names that chain with `.` are CGAL's fixed
+// list; ours are declared here through a pack class that *is* a CGAL pack, so that our entry
+// points read them with CGAL's `get_parameter()` and forward CGAL's own names unchanged.
+//
+//   namespace HP = CGAL::Hex_meshing_3::parameters;
+//   CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::max_cells(2000000).region_seed(p));
+//   auto np = HP::combine(CGAL::parameters::visitor(std::ref(v)), HP::max_cells(500000));
+
+#include <CGAL/Named_function_parameters.h>
+
+namespace CGAL {
+namespace Hex_meshing_3 {
+namespace internal_np {
+enum max_cells_t { max_cells };
+enum region_seed_t { region_seed };
+enum meshing_box_t { meshing_box };
+} // namespace internal_np
+
+/// \cond SKIP_IN_MANUAL
+template <typename T, typename Tag, typename Base = CGAL::internal_np::No_property>
+struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
+{
+  using CGAL::Named_function_parameters<T, Tag, Base>::Named_function_parameters;
+
+  template <typename V>
+  Named_parameters<V, internal_np::max_cells_t, Named_parameters>
+  max_cells(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::region_seed_t, Named_parameters>
+  region_seed(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::meshing_box_t, Named_parameters>
+  meshing_box(const V& v) const { return { v, *this }; }
+};
+/// \endcond
+
+namespace parameters {
+
+/// stop refining before the mesh would exceed this many cells (`std::size_t`)
+template <typename V>
+Named_parameters<V, internal_np::max_cells_t> max_cells(const V& v) { return { v }; }
+
+/// mesh the region reached from this point without crossing the surface (a `Point_3`),
+/// instead of the inside of the surface
+template <typename V>
+Named_parameters<V, internal_np::region_seed_t> region_seed(const V& v) { return { v }; }
+
+/// the box to mesh (a `CGAL::Bbox_3`), honoured exactly, instead of the domain's bounding box
+/// grown by one cell size on every side
+template <typename V>
+Named_parameters<V, internal_np::meshing_box_t> meshing_box(const V& v) { return { v }; }
+
+/// \cond SKIP_IN_MANUAL
+template <typename NP> NP combine(const NP& np) { return np; }
+
+template <typename NP, typename V, typename Tag, typename Base, typename... Rest>
+auto combine(const NP& np, const CGAL::Named_function_parameters<V, Tag, Base>& head,
+             const Rest&... rest)
+{
+  return combine(CGAL::Named_function_parameters<V, Tag, NP>(
+                   CGAL::parameters::get_parameter_reference(head, Tag{}), np),
+                 rest...);
+}
+/// \endcond
+
+} // namespace parameters
+} // namespace Hex_meshing_3
+} // namespace CGAL
+
+#endif // CGAL_HEX_MESHING_3_PARAMETERS_H

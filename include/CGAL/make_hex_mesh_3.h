@@ -1,0 +1,105 @@
+// Copyright (c) 2026  Hex_meshing_3 project authors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Author(s)     : Hex_meshing_3 developers
+#ifndef CGAL_MAKE_HEX_MESH_3_H
+#define CGAL_MAKE_HEX_MESH_3_H
+
+#include <CGAL/Hex_mesh_criteria_3.h>
+#include <CGAL/Hex_meshing_3/Default_visitor.h>
+#include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+#include <CGAL/Hex_meshing_3/Status.h>
+#include <CGAL/Hex_meshing_3/parameters.h>
+#include <CGAL/Hex_meshing_3/internal/Octree_mesher_3.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <cstddef>
+#include <optional>
+
+namespace CGAL {
+
+/*!
+ * \ingroup PkgHexMeshing3Functions
+ * \brief fills `out` with the hexahedra of an overlay grid refined by `criteria` over the region
+ * of `domain` asked for: the inside of the surface (default), or the region reached from a seed
+ * point without crossing the surface.
+ *
+ * Steps: an initial Cartesian grid over the meshing box (n_a = ceil(L_a / size) cells per axis,
+ * so the box is honoured exactly); refinement of the cells the criteria call bad, level by level;
+ * 2:1 balance across every face and edge; classification of the cells not cut by the surface;
+ * extraction of the kept cells with their hanging nodes and boundary faces. The boundary is a
+ * staircase of grid faces in this version.
+ *
+ * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
+ * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)
+ * \tparam HexMesh    model of `HexMesh_3` (e.g. `Hex_meshing_3::Hex_mesh_3<K>`)
+ * \param np optional sequence of named parameters among the ones listed below
+ *
+ * \cgalNamedParamsBegin
+ *   \cgalParamNBegin{meshing_box}
+ *     \cgalParamDescription{the box to mesh, honoured exactly}
+ *     \cgalParamType{`CGAL::Bbox_3`}
+ *     \cgalParamDefault{the domain's bounding box grown by the criteria's initial size on every side}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{region_seed}
+ *     \cgalParamDescription{mesh the cells reached from this point without crossing a cut cell
+ *       (the fluid around bodies, as OpenFOAM's `locationInMesh`), instead of the inside}
+ *     \cgalParamType{`Geom_traits::Point_3`}
+ *     \cgalParamDefault{none: the inside of the surface is meshed}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{max_cells}
+ *     \cgalParamDescription{stop refining before a level would take the grid beyond this many
+ *       leaf cells (balance may add a few more); the status is then `CELL_LIMIT_REACHED`}
+ *     \cgalParamType{`std::size_t`}
+ *     \cgalParamDefault{unlimited}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{visitor}
+ *     \cgalParamDescription{progress and cancellation hooks (model of `HexMeshingVisitor`)}
+ *     \cgalParamType{a class, or `std::reference_wrapper` of one}
+ *     \cgalParamDefault{`Hex_meshing_3::Default_visitor`}
+ *   \cgalParamNEnd
+ * \cgalNamedParamsEnd
+ *
+ * \return `Hex_meshing_3::Status::SUCCESS`, or why refinement stopped early (the mesh is valid).
+ * \throws Hex_meshing_3::Input_error when the box, sizes or seed are unusable: a seed outside the
+ *         box, inside a body, or in a cell cut by the surface; an empty box; sizes too small.
+ */
+template <typename MeshDomain, typename Criteria, typename HexMesh,
+          typename CGAL_NP_TEMPLATE_PARAMETERS>
+Hex_meshing_3::Status
+make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out,
+                const CGAL_NP_CLASS& np = parameters::default_values())
+{
+  using parameters::choose_parameter;
+  using parameters::get_parameter;
+  using parameters::get_parameter_reference;
+  using parameters::is_default_parameter;
+  namespace HNP = Hex_meshing_3::internal_np;
+  typedef typename MeshDomain::Geom_traits GT;
+  typedef typename GT::Point_3 Point_3;
+
+  const std::size_t max_cells = choose_parameter(get_parameter(np, HNP::max_cells), std::size_t(-1));
+
+  Bbox_3 box = domain.bbox();
+  const double margin = CGAL::to_double(criteria.initial_size());
+  box = Bbox_3(box.xmin() - margin, box.ymin() - margin, box.zmin() - margin,
+               box.xmax() + margin, box.ymax() + margin, box.zmax() + margin);
+  box = choose_parameter(get_parameter(np, HNP::meshing_box), box);
+
+  std::optional<Point_3> seed;
+  if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::region_seed_t>::value)
+    seed = Point_3(get_parameter(np, HNP::region_seed));
+
+  typedef typename internal_np::Lookup_named_param_def<
+      internal_np::visitor_t, CGAL_NP_CLASS, Hex_meshing_3::Default_visitor>::reference Visitor;
+  Hex_meshing_3::Default_visitor default_visitor;
+  Visitor visitor = choose_parameter(get_parameter_reference(np, internal_np::visitor), default_visitor);
+
+  Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
+  return mesher.run(out, max_cells, seed, visitor);
+}
+
+} // namespace CGAL
+
+#endif // CGAL_MAKE_HEX_MESH_3_H
