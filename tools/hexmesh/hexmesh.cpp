@@ -66,13 +66,15 @@ struct Progress
   std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now(), phase_t0;
   std::string phase;
   std::vector<std::pair<std::string, double>> seconds;
+  std::vector<std::pair<std::string, std::size_t>> work;   // cells each phase starts with
   int last_percent = -1;
 
-  void on_phase_begin(const char* name, std::size_t work)
+  void on_phase_begin(const char* name, std::size_t cells)
   {
     phase = name; phase_t0 = std::chrono::steady_clock::now(); last_percent = -1;
+    work.push_back({name, cells});
     if(!quiet) {
-      std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: " << name << " (" << work << " cells)";
+      std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: " << name << " (" << cells << " cells)";
       std::cerr << (tty ? "" : "\n") << std::flush;
     }
   }
@@ -149,10 +151,8 @@ int main(int argc, char** argv)
   bool force = false, quiet = false;
   app.add_option("input", input, "triangulated surface: .off, .obj, .stl or .ply")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, or a directory for an OpenFOAM case (repeatable)")->required();
-  app.add_option("--size", size, "largest cell edge (default: the largest side of the input's bounding box / 10)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--surface-size", surface_size, "largest edge of cells cut by the surface (default: size / 4)")
-      ->check(CLI::PositiveNumber);
+  auto* size_opt = app.add_option("--size", size, "largest cell edge (default: the largest side of the input's bounding box / 10)");
+  auto* ssize_opt = app.add_option("--surface-size", surface_size, "largest edge of cells cut by the surface (default: size / 4)");
   app.add_option("--box", box_s, "meshing box xmin,ymin,zmin,xmax,ymax,zmax, honoured exactly "
                                  "(default: the input's bounding box grown by one cell size)");
   app.add_option("--refine-box", refine_boxes, "xmin,ymin,zmin,xmax,ymax,zmax:SIZE - cells overlapping the box get "
@@ -171,6 +171,9 @@ int main(int argc, char** argv)
   Point_3 seed;
   try {
     app.parse(argc, argv);
+    if(size_opt->count() && !(size > 0 && std::isfinite(size))) throw CLI::ValidationError("--size", "must be a positive number");
+    if(ssize_opt->count() && !(surface_size > 0 && std::isfinite(surface_size)))
+      throw CLI::ValidationError("--surface-size", "must be a positive number");
     if(!box_s.empty()) { box = parse_box(box_s, "--box"); has_box = true; }
     for(const std::string& rb : refine_boxes) {
       const auto colon = rb.rfind(':');
@@ -309,6 +312,16 @@ int main(int argc, char** argv)
       sec["quality"] = t_quality; sec["write"] = t_write; sec["total"] = total;
       j["seconds"] = sec;
       j["peak_memory_mib"] = peak_memory_mib();
+      {
+        // grid speed: leaf cells of the balanced grid per second of refine + balance + classify
+        std::size_t leaves = 0;
+        double grid_seconds = 0;
+        for(const auto& w : progress.work) if(w.first == "classify") leaves = w.second;
+        for(const auto& s : progress.seconds)
+          if(s.first == "refine" || s.first == "balance" || s.first == "classify") grid_seconds += s.second;
+        j["grid"] = {{"leaf_cells", leaves}, {"seconds", grid_seconds},
+                     {"leaf_cells_per_second", grid_seconds > 0 ? double(leaves) / grid_seconds : 0.0}};
+      }
       auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
       j["quality"] = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
       j["outputs"] = outputs;

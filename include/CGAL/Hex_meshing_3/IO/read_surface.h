@@ -32,6 +32,12 @@ void read_surface(const std::string& filename,
                   std::vector<Point_3>& points,
                   std::vector<std::array<std::uint32_t, 3>>& triangles)
 {
+  const std::string::size_type dot = filename.find_last_of('.');
+  std::string ext = dot == std::string::npos ? std::string() : filename.substr(dot + 1);
+  for(char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if(ext != "off" && ext != "obj" && ext != "stl" && ext != "ply")
+    throw Input_error(filename + ": unknown surface format '" + ext + "' (expected .off, .obj, .stl or .ply)");
+
   {
     std::ifstream probe(filename, std::ios::binary);
     if(!probe)
@@ -40,12 +46,6 @@ void read_surface(const std::string& filename,
     if(probe.tellg() <= 0)
       throw Input_error(filename + ": the file is empty");
   }
-  const std::string::size_type dot = filename.find_last_of('.');
-  std::string ext = dot == std::string::npos ? std::string() : filename.substr(dot + 1);
-  for(char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if(ext != "off" && ext != "obj" && ext != "stl" && ext != "ply")
-    throw Input_error(filename + ": unknown surface format '" + ext + "' (expected .off, .obj, .stl or .ply)");
-
   std::vector<Point_3> pts;
   std::vector<std::vector<std::size_t>> polygons;
   bool ok = false;

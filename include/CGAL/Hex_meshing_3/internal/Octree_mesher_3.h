@@ -134,9 +134,10 @@ public:
   {
     out.clear();
     Status status = Status::SUCCESS;
-    init_grid();                                    // throws Input_error on an unusable box/size
+    init_box();                                     // throws Input_error on an unusable box/size
     if(seed) locate_seed(*seed);                    // throws before any work on a bad seed
-    visitor.on_phase_begin("refine", leaf_count());
+    visitor.on_phase_begin("refine", std::size_t(m_n[0]) * m_n[1] * m_n[2]);
+    init_grid();
     status = refine(max_cells, visitor);
     visitor.on_phase_end("refine");
     visitor.on_phase_begin("balance", leaf_count());
@@ -153,7 +154,7 @@ public:
 
   // ---------------------------------------------------------------------------------------------
   // grid set-up
-  void init_grid()
+  void init_box()
   {
     const FT size = m_criteria.initial_size();
     if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
@@ -173,6 +174,10 @@ public:
       --m_D;
     m_stats = Statistics();
     m_stats.initial_cells = m_n;
+  }
+
+  void init_grid()
+  {
     const std::size_t roots = std::size_t(m_n[0]) * m_n[1] * m_n[2];
     if(roots > 200000000u) throw Input_error("the initial grid would have more than 2e8 cells; increase the cell size");
     m_nodes.clear(); m_nodes.resize(roots);
@@ -194,8 +199,9 @@ public:
       std::int64_t r0[3], r1[3];
       bool outside = false;
       for(int a = 0; a < 3; ++a) {
-        r0[a] = std::int64_t(std::floor((tb.min(a) - m_lo[a]) / h[a])) - 1;
-        r1[a] = std::int64_t(std::floor((tb.max(a) - m_lo[a]) / h[a])) + 1;
+        // candidate cells, widened by 1e-6 cell for round-off; the exact test decides
+        r0[a] = std::int64_t(std::floor((tb.min(a) - m_lo[a]) / h[a] - 1e-6));
+        r1[a] = std::int64_t(std::floor((tb.max(a) - m_lo[a]) / h[a] + 1e-6));
         r0[a] = (std::max<std::int64_t>)(r0[a], 0);
         r1[a] = (std::min<std::int64_t>)(r1[a], std::int64_t(m_n[a]) - 1);
         if(r0[a] > r1[a]) outside = true;

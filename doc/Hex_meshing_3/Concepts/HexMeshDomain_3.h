@@ -1,0 +1,78 @@
+/*!
+\ingroup PkgHexMeshing3Concepts
+\cgalConcept
+
+The concept `HexMeshDomain_3` describes what `CGAL::make_hex_mesh_3()` asks of the region to mesh:
+a triangulated surface given as indexed triangles, with exact box/triangle intersection tests, an
+inside test, and surface parts (patches) that name the boundary faces of the mesh.
+
+The mesher distributes the triangles to the cells of the grid with `do_intersect()` (a cell is
+*cut* when it meets a triangle), decides which uncut cells lie inside with `is_inside()` when
+`has_exact_inside_test()` is `true` and with `winding_number()` otherwise, and names each boundary
+face after the part of the triangle closest to it (`closest_triangle()`, `patch()`).
+
+\cgalHasModelsBegin
+\cgalHasModels{`CGAL::Hex_meshing_3::Surface_domain_3<GeomTraits>`}
+\cgalHasModelsEnd
+
+\sa `CGAL::make_hex_mesh_3()`
+\sa `HexMeshCriteria_3`
+*/
+class HexMeshDomain_3
+{
+public:
+  /// \name Types
+  /// @{
+
+  /// a model of `Kernel` with exact predicates; its `FT` and `Point_3` are those of the mesher
+  typedef unspecified_type Geom_traits;
+
+  /// `Geom_traits::Point_3`
+  typedef unspecified_type Point_3;
+
+  /// @}
+
+  /// \name Access
+  /// @{
+
+  /// the bounding box of the surface; the default meshing box is this box grown by the criteria's
+  /// initial size on every side
+  const CGAL::Bbox_3& bbox() const;
+
+  /// the number of triangles; triangles are indexed from 0 to `number_of_triangles() - 1`
+  std::size_t number_of_triangles() const;
+
+  /// the bounding box of triangle `i`
+  const CGAL::Bbox_3& triangle_bbox(std::size_t i) const;
+
+  /// the names of the parts of the surface; boundary faces on the surface get the patch
+  /// `6 + patch(i)` of the mesh, after the six faces of the meshing box
+  const std::vector<std::string>& patch_names() const;
+
+  /// the part of triangle `i`, an index into `patch_names()`
+  int patch(std::size_t i) const;
+
+  /// @}
+
+  /// \name Queries
+  /// @{
+
+  /// does the closed box `b` meet triangle `i`? Must be exact: it decides which cells are cut.
+  bool do_intersect(const CGAL::Bbox_3& b, std::size_t i) const;
+
+  /// `true` if `is_inside()` is an exact test; the mesher then calls it once per connected
+  /// component of uncut cells, and `winding_number()` once per cell otherwise
+  bool has_exact_inside_test() const;
+
+  /// is `p` inside the surface? Also used to reject a region seed that lies inside a body.
+  bool is_inside(const Point_3& p) const;
+
+  /// the generalised winding number of the surface at `p`; a cell whose centre has a winding
+  /// number of at least 0.5 is inside
+  double winding_number(const Point_3& p) const;
+
+  /// the index of a triangle closest to `p`
+  std::size_t closest_triangle(const Point_3& p) const;
+
+  /// @}
+};
