@@ -34,6 +34,9 @@ namespace CGAL {
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)
  * \tparam HexMesh    model of `HexMesh_3` (e.g. `Hex_meshing_3::Hex_mesh_3<K>`)
+ * \param domain   the surface and its inside test (input)
+ * \param criteria says which cells to split (input)
+ * \param out      receives the mesh; cleared first (output)
  * \param np optional sequence of named parameters among the ones listed below
  *
  * \cgalNamedParamsBegin

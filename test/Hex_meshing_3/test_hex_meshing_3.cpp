@@ -284,6 +284,29 @@ void test_meshing()
   assert(s == HM::Status::CELL_LIMIT_REACHED);
   check_mesh(m4, "eight cell limit");
 
+  // sizes as fields: finer cells (and surface cells) for z > 0; max level caps the refinement
+  {
+    Criteria fc([](const Point_3& p) { return p.z() > 0 ? 0.05 : 0.1; }, 0.1,
+                [](const Point_3& p) { return p.z() > 0 ? 0.0125 : 0.025; });
+    Mesh mf;
+    CGAL::make_hex_mesh_3(eight, fc, mf);
+    check_mesh(mf, "eight with size fields");
+    std::size_t fine_top = 0, fine_bottom = 0;
+    int top_level = 0;
+    for(std::size_t c = 0; c < mf.number_of_cells(); ++c) {
+      const double z = CGAL::midpoint(mf.points[mf.hexahedra[c][0]], mf.points[mf.hexahedra[c][6]]).z();
+      top_level = (std::max)(top_level, int(mf.cell_levels[c][0]));
+      if(mf.cell_levels[c][0] == 3) (z > 0 ? fine_top : fine_bottom)++;
+    }
+    std::cout << "size fields: " << fine_top << " level-3 cells above z = 0, " << fine_bottom << " below\n";
+    assert(top_level == 3 && fine_top > 4 * fine_bottom);
+    fc.set_max_level(1);
+    Mesh ml;
+    CGAL::make_hex_mesh_3(eight, fc, ml);
+    for(const auto& l : ml.cell_levels) assert(l[0] <= 1);
+    check_mesh(ml, "eight max level 1");
+  }
+
   // the air around the figure-eight in a box, from a seed; box faces are patches 0..5
   const CGAL::Bbox_3 box(-1, -1, -1, 1.5, 1, 1);
   Criteria c2(0.25, 0.05);
