@@ -211,15 +211,36 @@ public:
         for(std::int64_t y = r0[1]; y <= r1[1]; ++y)
           for(std::int64_t x = r0[0]; x <= r1[0]; ++x) {
             const std::uint32_t id = root_index(std::uint32_t(x), std::uint32_t(y), std::uint32_t(z));
-            if(m_domain.do_intersect(node_bbox(m_nodes[id]), t)) {
+            if(CGAL::do_overlap(node_bbox(m_nodes[id]), tb)) {
               Node& nd = m_nodes[id];
               if(nd.list == 0) { nd.list = std::uint32_t(m_lists.size()); m_lists.emplace_back(); }
               m_lists[nd.list].push_back(std::uint32_t(t));
-              nd.flags |= CUT;
             }
           }
     }
+    for(std::uint32_t id = 0; id < roots; ++id) decide_cut(id);
     m_leaves = roots;
+  }
+
+  // Candidate lists hold the triangles whose bounding boxes overlap the cell's (a superset of the
+  // triangles meeting it, cheap to pass down to children); whether the cell is cut is decided by
+  // the exact test, stopping at the first triangle that meets it. Uncut cells drop their list:
+  // their children cannot be cut.
+  void decide_cut(std::uint32_t id)
+  {
+    Node& nd = m_nodes[id];
+    if(nd.list == 0) return;
+    const Bbox_3 b = node_bbox(nd);
+    std::vector<std::uint32_t>& l = m_lists[nd.list];
+    for(std::size_t i = 0; i < l.size(); ++i)
+      if(m_domain.do_intersect(b, l[i])) {
+        std::swap(l[0], l[i]);   // the first hit is tested first in the children (likely to hit again)
+        nd.flags |= CUT;
+        return;
+      }
+    l.clear();
+    m_free_list.push_back(nd.list);
+    nd.list = 0;
   }
 
   std::size_t leaf_count() const { return m_leaves; }
@@ -303,22 +324,20 @@ public:
       m_nodes[id].list = 0;
       Bbox_3 cb[8];
       for(int o = 0; o < 8; ++o) cb[o] = node_bbox(m_nodes[first + o]);
+      m_free_list.push_back(parent.list);
       for(std::uint32_t t : tris) {
         const Bbox_3& tb = m_domain.triangle_bbox(t);
         for(int o = 0; o < 8; ++o) {
           if(!CGAL::do_overlap(cb[o], tb)) continue;
-          if(!m_domain.do_intersect(cb[o], t)) continue;
           Node& c = m_nodes[first + o];
           if(c.list == 0) {
-            // reuse the parent's slot for the first child that needs one
             if(m_free_list.empty()) { c.list = std::uint32_t(m_lists.size()); m_lists.emplace_back(); }
             else { c.list = m_free_list.back(); m_free_list.pop_back(); }
           }
           m_lists[c.list].push_back(t);
-          c.flags |= CUT;
         }
       }
-      m_free_list.push_back(parent.list);
+      for(int o = 0; o < 8; ++o) decide_cut(first + o);
     }
   }
 
