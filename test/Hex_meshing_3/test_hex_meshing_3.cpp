@@ -393,6 +393,21 @@ void test_readers_and_errors()
     assert(d.input_summary().degenerate_triangles == 1);
     assert(d.number_of_triangles() == 1);
   }
+  // a huge triangle crossing the box is seen (no integer overflow when locating it), and a bad
+  // part index is an error
+  {
+    std::vector<Point_3> p = {Point_3(-1e25, -1e25, 0.1), Point_3(1e25, -1e25, 0.1), Point_3(0, 1e25, 0.1)};
+    std::vector<std::array<std::uint32_t, 3>> t = {{{0, 1, 2}}};
+    Domain d(p, t);
+    Mesh m;
+    CGAL::make_hex_mesh_3(d, Criteria(0.5, 0.25), m,
+                          HP::meshing_box(CGAL::Bbox_3(-1, -1, -1, 1, 1, 1)).region_seed(Point_3(0.3, 0.3, 0.7)));
+    for(const auto& c : m.hexahedra) assert(m.points[c[0]].z() >= 0.1);   // the plane bounds the region
+    assert(m.has_hanging_nodes());
+    check_mesh(m, "huge plane");
+    expect_input_error([&] { Domain bad(p, t, std::vector<int>{3}, std::vector<std::string>{"a", "b"}); }, "part index");
+    expect_input_error([&] { Domain bad(p, t, std::vector<int>{-1}, std::vector<std::string>{"a"}); }, "part index");
+  }
   // unreadable, empty, garbage, NaN files: typed errors naming the file
   {
     std::ofstream("tmp_empty.off").close();

@@ -214,6 +214,10 @@ private:
     m_summary.input_triangles = triangles.size();
     if(patch_names.empty()) patch_names.push_back("surface");
     if(patch_of_triangle.size() != triangles.size()) patch_of_triangle.assign(triangles.size(), 0);
+    for(int p : patch_of_triangle)
+      if(p < 0 || std::size_t(p) >= patch_names.size())
+        throw Input_error("surface: a triangle's part index " + std::to_string(p) + " is not among the " +
+                          std::to_string(patch_names.size()) + " part names");
     for(const Point_3& p : points)
       if(!std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
          !std::isfinite(CGAL::to_double(p.z())))

@@ -199,11 +199,12 @@ public:
       std::int64_t r0[3], r1[3];
       bool outside = false;
       for(int a = 0; a < 3; ++a) {
-        // candidate cells, widened by 1e-6 cell for round-off; the exact test decides
-        r0[a] = std::int64_t(std::floor((tb.min(a) - m_lo[a]) / h[a] - 1e-6));
-        r1[a] = std::int64_t(std::floor((tb.max(a) - m_lo[a]) / h[a] + 1e-6));
-        r0[a] = (std::max<std::int64_t>)(r0[a], 0);
-        r1[a] = (std::min<std::int64_t>)(r1[a], std::int64_t(m_n[a]) - 1);
+        // candidate cells, widened by 1e-6 cell for round-off; the exact test decides. Clamped
+        // as doubles first: huge coordinates must not overflow the integer conversion.
+        const double u0 = std::floor((tb.min(a) - m_lo[a]) / h[a] - 1e-6);
+        const double u1 = std::floor((tb.max(a) - m_lo[a]) / h[a] + 1e-6);
+        r0[a] = std::int64_t((std::min)((std::max)(u0, 0.0), double(m_n[a])));
+        r1[a] = std::int64_t((std::min)((std::max)(u1, -1.0), double(m_n[a]) - 1));
         if(r0[a] > r1[a]) outside = true;
       }
       if(outside) continue;
