@@ -8,6 +8,7 @@
 // isotropic here (1 -> 8); a size s is realised as (initial edge) / 2^k <= s.
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 
 #include <algorithm>
 #include <array>
@@ -41,9 +42,8 @@ struct Cell_3
   /// length of the longest of the 12 edges
   FT size() const
   {
-    static const int e[12][2] = {{0,1},{3,2},{4,5},{7,6},{0,3},{1,2},{4,7},{5,6},{0,4},{1,5},{2,6},{3,7}};
     FT m2 = 0;
-    for(const auto& ed : e) m2 = (std::max)(m2, CGAL::squared_distance(corners[ed[0]], corners[ed[1]]));
+    for(const auto& ed : hex_local_edges()) m2 = (std::max)(m2, CGAL::squared_distance(corners[ed[0]], corners[ed[1]]));
     return CGAL::approximate_sqrt(m2);
   }
   /// the average of the corners

@@ -31,6 +31,15 @@ namespace CGAL {
 namespace Hex_meshing_3 {
 
 /// \ingroup PkgHexMeshing3Mesh
+/// \brief lattice offsets (x, y, z) of the 8 corners of a hexahedron in VTK order
+inline const std::array<std::array<int, 3>, 8>& hex_corner_offsets()
+{
+  static const std::array<std::array<int, 3>, 8> o = {{
+      {{0, 0, 0}}, {{1, 0, 0}}, {{1, 1, 0}}, {{0, 1, 0}}, {{0, 0, 1}}, {{1, 0, 1}}, {{1, 1, 1}}, {{0, 1, 1}}}};
+  return o;
+}
+
+/// \ingroup PkgHexMeshing3Mesh
 /// \brief local faces of a hexahedron in VTK corner order, each counter-clockwise seen from outside
 inline const std::array<std::array<int, 4>, 6>& hex_local_faces()
 {

@@ -8,6 +8,7 @@
 // hexahedron in VTK order (see Hex_mesh_3.h); a cell is the convex hull of its corners, so the
 // queries stay right once the grid is deformed.
 
+#include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
 #include <CGAL/Hex_meshing_3/internal/Fast_winding_number_3.h>
@@ -153,13 +154,12 @@ public:
   /// exact: are the 8 corners (VTK order) those of an axis-aligned box?
   static bool is_axis_aligned_box(const std::array<Point_3, 8>& c)
   {
-    // corner k has offsets (bit0 of (k==1||k==2||k==5||k==6), ...): compare coordinates exactly
-    static const int ox[8] = {0, 1, 1, 0, 0, 1, 1, 0}, oy[8] = {0, 0, 1, 1, 0, 0, 1, 1},
-                     oz[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+    // each corner's coordinates are corner 0's or corner 6's, by its lattice offsets (exact compare)
+    const auto& o = hex_corner_offsets();
     for(int k = 1; k < 8; ++k) {
-      if(c[k].x() != (ox[k] ? c[6].x() : c[0].x())) return false;
-      if(c[k].y() != (oy[k] ? c[6].y() : c[0].y())) return false;
-      if(c[k].z() != (oz[k] ? c[6].z() : c[0].z())) return false;
+      if(c[k].x() != (o[k][0] ? c[6].x() : c[0].x())) return false;
+      if(c[k].y() != (o[k][1] ? c[6].y() : c[0].y())) return false;
+      if(c[k].z() != (o[k][2] ? c[6].z() : c[0].z())) return false;
     }
     return c[0].x() < c[6].x() && c[0].y() < c[6].y() && c[0].z() < c[6].z();
   }

@@ -38,7 +38,6 @@ namespace CGAL {
 namespace Hex_meshing_3 {
 namespace internal {
 
-static const int k_corner_offset[8][3] = {{0,0,0},{1,0,0},{1,1,0},{0,1,0},{0,0,1},{1,0,1},{1,1,1},{0,1,1}};
 
 // Open-addressing hash map from 63-bit keys to 32-bit values (deterministic, no allocation per entry).
 class Key_map
@@ -274,8 +273,8 @@ public:
     double lo[3], hi[3];
     for(int a = 0; a < 3; ++a) { lo[a] = coord_at(a, v[a], nd.level); hi[a] = coord_at(a, v[a] + 1, nd.level); }
     for(int k = 0; k < 8; ++k)
-      c.corners[k] = Point_3(k_corner_offset[k][0] ? hi[0] : lo[0], k_corner_offset[k][1] ? hi[1] : lo[1],
-                             k_corner_offset[k][2] ? hi[2] : lo[2]);
+      c.corners[k] = Point_3(hex_corner_offsets()[k][0] ? hi[0] : lo[0], hex_corner_offsets()[k][1] ? hi[1] : lo[1],
+                             hex_corner_offsets()[k][2] ? hi[2] : lo[2]);
     c.is_cut = (nd.flags & CUT) != 0;
     return c;
   }
@@ -590,9 +589,9 @@ public:
     };
     auto corner_key = [&](const Node& nd, int k, std::uint64_t* c) {
       const int s = D - nd.level;
-      c[0] = std::uint64_t(nd.x + k_corner_offset[k][0]) << s;
-      c[1] = std::uint64_t(nd.y + k_corner_offset[k][1]) << s;
-      c[2] = std::uint64_t(nd.z + k_corner_offset[k][2]) << s;
+      c[0] = std::uint64_t(nd.x + hex_corner_offsets()[k][0]) << s;
+      c[1] = std::uint64_t(nd.y + hex_corner_offsets()[k][1]) << s;
+      c[2] = std::uint64_t(nd.z + hex_corner_offsets()[k][2]) << s;
     };
 
     out.hexahedra.resize(kept.size());
