@@ -393,25 +393,6 @@ public:
     }
   }
 
-  /// checks the 2:1 balance of every leaf against its face and edge neighbours
-  bool is_balanced() const
-  {
-    for(std::size_t id = 0; id < m_nodes.size(); ++id) {
-      const Node& nd = m_nodes[id];
-      if(!nd.is_leaf()) continue;
-      for(int dz = -1; dz <= 1; ++dz)
-        for(int dy = -1; dy <= 1; ++dy)
-          for(int dx = -1; dx <= 1; ++dx) {
-            const int nz = (dx != 0) + (dy != 0) + (dz != 0);
-            if(nz == 0 || nz == 3) continue;
-            const std::uint32_t j = find(nd.level, std::int64_t(nd.x) + dx, std::int64_t(nd.y) + dy, std::int64_t(nd.z) + dz);
-            if(j == NONE) continue;
-            if(m_nodes[j].is_leaf() && m_nodes[j].level + 1 < nd.level) return false;
-          }
-    }
-    return true;
-  }
-
   // ---------------------------------------------------------------------------------------------
   // face neighbours: the leaves across face f (axis f/2, side f%2) of leaf `id`
   template <typename F>
@@ -688,8 +669,6 @@ public:
     const Point_3 m = CGAL::centroid(c.corners[q[0]], c.corners[q[1]], c.corners[q[2]], c.corners[q[3]]);
     return 6 + m_domain.patch(m_domain.closest_triangle(m));
   }
-
-  const std::vector<Node>& nodes() const { return m_nodes; }
 
 private:
   const MeshDomain& m_domain;
