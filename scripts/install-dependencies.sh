@@ -12,6 +12,7 @@ packages=(
   openfoam
   doxygen
   python3-meshio python3-numpy
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -51,6 +51,14 @@ namespace CGAL {
  *     \cgalParamType{`Geom_traits::Point_3`}
  *     \cgalParamDefault{none: the inside of the surface is meshed}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{leaks}
+ *     \cgalParamDescription{receives the leaks of a seeded region: groups of cells the flood fill
+ *       from the seed reached through holes of an open surface but that the winding number puts
+ *       inside a body; the winding number decides (they are not meshed). Only open or
+ *       inconsistent surfaces can leak.}
+ *     \cgalParamType{an output iterator with value type `Hex_meshing_3::Region_leak`}
+ *     \cgalParamDefault{leaks are removed silently}
+ *   \cgalParamNEnd
  *   \cgalParamNBegin{max_cells}
  *     \cgalParamDescription{stop refining before a level would take the grid beyond this many
  *       leaf cells (balance may add a few more); the status is then `CELL_LIMIT_REACHED`}
@@ -100,7 +108,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   Visitor visitor = choose_parameter(get_parameter_reference(np, internal_np::visitor), default_visitor);
 
   Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
-  return mesher.run(out, max_cells, seed, visitor);
+  const Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor);
+  if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::leaks_t>::value) {
+    auto it = get_parameter(np, HNP::leaks);
+    for(const Hex_meshing_3::Region_leak& l : mesher.leaks()) *it++ = l;
+  }
+  return status;
 }
 
 } // namespace CGAL

@@ -3,7 +3,7 @@
 // Exit codes:
 //   0  success (mesh written)
 //   1  usage error (bad option or value)
-//   2  input error (unreadable or unusable surface, bad box, bad seed)
+//   2  input error (unreadable or unusable surface, bad box, bad seed, a leak with --strict)
 //   3  output error (output exists and --force not given, or cannot be written)
 //   4  the mesh failed a validity check (inverted cell or inconsistent faces): nothing written
 //   5  cancelled (Ctrl-C): the valid, coarser mesh reached so far was written
@@ -11,6 +11,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hex_mesh_criteria_3.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+#include <CGAL/Hex_meshing_3/IO/read_surface.h>
+#include <CGAL/Hex_meshing_3/IO/write_MSH.h>
+#include <CGAL/Hex_meshing_3/IO/write_Medit.h>
 #include <CGAL/Hex_meshing_3/IO/write_OpenFOAM.h>
 #include <CGAL/Hex_meshing_3/IO/write_VTU.h>
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
@@ -20,6 +23,8 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+
+#include "html_report.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -31,6 +36,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -123,36 +129,78 @@ static CGAL::Bbox_3 parse_box(const std::string& s, const std::string& what)
   return CGAL::Bbox_3(v[0], v[1], v[2], v[3], v[4], v[5]);
 }
 
-static bool is_vtu(const std::string& o)
+enum class Output_kind { VTU, MSH, MEDIT, OPENFOAM };
+static Output_kind output_kind(const std::string& o)
 {
-  return o.size() > 4 && o.compare(o.size() - 4, 4, ".vtu") == 0;
+  const std::string ext = fs::path(o).extension().string();
+  if(ext == ".vtu") return Output_kind::VTU;
+  if(ext == ".msh") return Output_kind::MSH;
+  if(ext == ".mesh") return Output_kind::MEDIT;
+  return Output_kind::OPENFOAM;
+}
+
+/// REGEX=VALUE rules (the last '=' separates, so a regex may contain '=')
+struct Rule { std::string text; std::regex re; std::string value; };
+static std::vector<Rule> parse_rules(const std::vector<std::string>& v, const std::string& what)
+{
+  std::vector<Rule> rules;
+  for(const std::string& r : v) {
+    const auto eq = r.rfind('=');
+    if(eq == std::string::npos || eq == 0 || eq + 1 == r.size())
+      throw CLI::ValidationError(what, "expected REGEX=VALUE in '" + r + "'");
+    try {
+      rules.push_back({r.substr(0, eq), std::regex(r.substr(0, eq), std::regex::ECMAScript), r.substr(eq + 1)});
+    } catch(const std::regex_error& e) {
+      throw CLI::ValidationError(what, "'" + r.substr(0, eq) + "' is not a valid regular expression (" + e.what() + ")");
+    }
+  }
+  return rules;
+}
+
+static std::string human_count(std::size_t n) { return std::to_string(n); }
+
+/// histograms, face warpage summary and the worst elements with their locations
+static void add_quality_details(nlohmann::ordered_json& jq, const Mesh& mesh, const HM::Polyhedral_mesh_3& pm,
+                                const HM::Mesh_quality& q)
+{
+  const auto fw = HM::Mesh_quality::range(q.face_warpage);
+  jq["face_warpage"] = {{"min", fw.min}, {"mean", fw.mean}, {"max", fw.max}};
+  jq["inverted_cells"] = q.number_of_inverted_cells();
+  jq["histograms"] = histograms_json(HM::quality_histograms(q));
+  jq["worst_cells"] = worst_cells_json(HM::worst_cells(mesh, pm, q, 10));
 }
 
 int main(int argc, char** argv)
 {
   CLI::App app{"hexmesh - all-hexahedral meshes from triangulated surfaces (Hex_meshing_3)"};
   app.footer(
-      "Outputs: a name ending in .vtu writes a VTK unstructured grid (ParaView); any other name is an\n"
-      "OpenFOAM case directory (constant/polyMesh; system/controlDict only if absent).\n\n"
+      "Inputs: .off, .obj, .stl (ASCII or binary) or .ply, each optionally gzip-compressed (.gz);\n"
+      "several files are meshed together. OBJ groups, STL solids, or else the file names become\n"
+      "the surface patches; the six box faces are the patches xmin, xmax, ymin, ymax, zmin, zmax.\n\n"
+      "Outputs (by extension): .vtu VTK unstructured grid (ParaView); .msh Gmsh 4.1 (physical groups\n"
+      "= patches); .mesh Medit; any other name is an OpenFOAM case directory (constant/polyMesh;\n"
+      "system files only if absent). Reports: --report FILE.json and/or --report FILE.html.\n\n"
       "Examples:\n"
       "  hexmesh part.stl -o part.vtu\n"
-      "  hexmesh part.off -o part.vtu -o partCase --size 0.1 --surface-size 0.025\n"
-      "  hexmesh bike.obj -o bikeCase --box -5,-4,0,15,4,8 --size 1 --surface-size 0.03125 \\\n"
-      "          --refine-box -1,-0.7,0,8,0.7,2.5:0.0625 --region seed:3.0001,3.0001,0.43\n\n"
-      "Exit codes: 0 success; 1 usage error; 2 input error; 3 output error (exists without --force,\n"
-      "or not writable); 4 the mesh failed a validity check; 5 cancelled by Ctrl-C (the coarser mesh\n"
-      "reached so far is written).");
-  std::string input;
-  std::vector<std::string> outputs;
-  double size = 0, surface_size = 0;
-  std::string box_s, region = "inside", report;
-  std::vector<std::string> refine_boxes;
+      "  hexmesh part.off -o part.vtu -o partCase --size 0.1 --surface-size 0.025 --report part.html\n"
+      "  hexmesh motorBike.obj.gz -o bikeCase --box -5,-4,0,15,4,8 --size 1 --surface-size 0.03125 \\\n"
+      "          --refine-box -1,-0.7,0,8,0.7,2.5:0.0625 --region seed:3.0001,3.0001,0.43 \\\n"
+      "          --patch-name 'motorBike.*=motorBike' --patch-name 'zmin=ground' --patch-type 'ground=wall'\n\n"
+      "Exit codes: 0 success; 1 usage error; 2 input error (unreadable input, bad seed, or a leak with\n"
+      "--strict); 3 output error (exists without --force, or not writable); 4 the mesh failed a validity\n"
+      "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
+  std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules;
+  double size = 0, surface_size = 0, scale = 1;
+  std::string box_s, region = "inside";
   int max_level = 12;
-  bool force = false, quiet = false;
-  app.add_option("input", input, "triangulated surface: .off, .obj, .stl or .ply")->required();
-  app.add_option("-o,--output", outputs, "output: FILE.vtu, or a directory for an OpenFOAM case (repeatable)")->required();
+  std::size_t max_cells = 0;
+  bool force = false, quiet = false, strict = false;
+  app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
+  app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
+                                         "(repeatable)")->required();
   auto* size_opt = app.add_option("--size", size, "largest cell edge (default: the largest side of the input's bounding box / 10)");
   auto* ssize_opt = app.add_option("--surface-size", surface_size, "largest edge of cells cut by the surface (default: size / 4)");
+  auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
   app.add_option("--box", box_s, "meshing box xmin,ymin,zmin,xmax,ymax,zmax, honoured exactly "
                                  "(default: the input's bounding box grown by one cell size)");
   app.add_option("--refine-box", refine_boxes, "xmin,ymin,zmin,xmax,ymax,zmax:SIZE - cells overlapping the box get "
@@ -160,20 +208,30 @@ int main(int argc, char** argv)
   app.add_option("--region", region, "inside (cells inside the surface) or seed:X,Y,Z (cells reached from the point "
                                      "without crossing the surface)");
   app.add_option("--max-level", max_level, "most refinement levels below the initial grid")->check(CLI::Range(0, 20));
-  app.add_option("--report", report, "write a JSON report (counts, seconds, memory, quality) to this file");
+  app.add_option("--max-cells", max_cells, "stop refining before the grid exceeds this many cells (the mesh stays valid; "
+                                           "a warning says so)");
+  app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
+  app.add_option("--patch-name", patch_name_rules, "REGEX=NAME: rename the patches whose whole name matches REGEX "
+                                                   "(NAME may use $1...); patches given the same name are merged (repeatable)");
+  app.add_option("--patch-type", patch_type_rules, "REGEX=TYPE: set the type of the patches matching REGEX (after renaming) "
+                                                   "to wall, patch or symmetryPlane (repeatable; default: box faces patch, "
+                                                   "surface parts wall)");
+  app.add_option("--report", reports, "write a report to FILE.json or FILE.html (repeatable)");
   app.add_flag("--force", force, "overwrite existing output files and polyMesh directories");
-  app.add_flag("-q,--quiet", quiet, "print nothing but errors");
+  app.add_flag("-q,--quiet", quiet, "print nothing but errors and warnings");
 
   CGAL::Bbox_3 box;
   bool has_box = false;
   std::vector<std::pair<CGAL::Bbox_3, double>> rboxes;
   bool has_seed = false;
   Point_3 seed;
+  std::vector<Rule> name_rules, type_rules;
   try {
     app.parse(argc, argv);
     if(size_opt->count() && !(size > 0 && std::isfinite(size))) throw CLI::ValidationError("--size", "must be a positive number");
     if(ssize_opt->count() && !(surface_size > 0 && std::isfinite(surface_size)))
       throw CLI::ValidationError("--surface-size", "must be a positive number");
+    if(scale_opt->count() && !(scale > 0 && std::isfinite(scale))) throw CLI::ValidationError("--scale", "must be a positive number");
     if(!box_s.empty()) { box = parse_box(box_s, "--box"); has_box = true; }
     for(const std::string& rb : refine_boxes) {
       const auto colon = rb.rfind(':');
@@ -187,11 +245,21 @@ int main(int argc, char** argv)
       seed = Point_3(v[0], v[1], v[2]); has_seed = true;
     } else if(region != "inside")
       throw CLI::ValidationError("--region", "expected 'inside' or 'seed:X,Y,Z', got '" + region + "'");
+    name_rules = parse_rules(patch_name_rules, "--patch-name");
+    type_rules = parse_rules(patch_type_rules, "--patch-type");
+    for(const Rule& r : type_rules)
+      if(r.value != "wall" && r.value != "patch" && r.value != "symmetryPlane")
+        throw CLI::ValidationError("--patch-type", "'" + r.value + "' is not wall, patch or symmetryPlane");
     for(const std::string& o : outputs) {
       const std::string ext = fs::path(o).extension().string();
-      if(!is_vtu(o) && !ext.empty() && ext != "/" && fs::path(o).filename() != "." )
+      if(output_kind(o) == Output_kind::OPENFOAM && !ext.empty() && fs::path(o).filename() != ".")
         throw CLI::ValidationError("--output", "'" + o + "': unknown output format '" + ext +
-                                   "' (a .vtu file, or a directory name without extension for an OpenFOAM case)");
+                                   "' (.vtu, .msh, .mesh, or a directory name without extension for an OpenFOAM case)");
+    }
+    for(const std::string& r : reports) {
+      const std::string ext = fs::path(r).extension().string();
+      if(ext != ".json" && ext != ".html")
+        throw CLI::ValidationError("--report", "'" + r + "': a report is a .json or an .html file");
     }
   } catch(const CLI::ParseError& e) {
     if(e.get_exit_code() == 0) return app.exit(e);
@@ -199,17 +267,23 @@ int main(int argc, char** argv)
     return USAGE;
   }
 
-  // refuse to overwrite before any work
-  for(const std::string& o : outputs) {
-    if(is_vtu(o)) {
-      if(fs::exists(o) && !force) {
-        std::cerr << "hexmesh: " << o << " exists; use --force to overwrite it\n";
+  // refuse to overwrite before any work; an input is never an output
+  {
+    std::vector<std::string> files = reports;
+    for(const std::string& o : outputs)
+      files.push_back(output_kind(o) == Output_kind::OPENFOAM ? (fs::path(o) / "constant" / "polyMesh").string() : o);
+    for(const std::string& f : files) {
+      for(const std::string& in : inputs) {
+        std::error_code ec;
+        if(fs::exists(in) && fs::exists(f) && fs::equivalent(in, f, ec)) {
+          std::cerr << "hexmesh: " << f << " is an input; it is never overwritten\n";
+          return OUTPUT;
+        }
+      }
+      if(fs::exists(f) && !force) {
+        std::cerr << "hexmesh: " << f << " exists; use --force to overwrite it\n";
         return OUTPUT;
       }
-    } else if(fs::exists(fs::path(o) / "constant" / "polyMesh") && !force) {
-      std::cerr << "hexmesh: " << (fs::path(o) / "constant" / "polyMesh").string()
-                << " exists; use --force to overwrite it\n";
-      return OUTPUT;
     }
   }
 
@@ -224,15 +298,36 @@ int main(int argc, char** argv)
 
   try {
     auto t = std::chrono::steady_clock::now();
-    Domain domain(input);
+    HM::IO::Surface_soup<Point_3> soup;
+    for(const std::string& in : inputs) HM::IO::read_surface(in, soup, scale);
+    const std::size_t read_points = soup.points.size(), read_polygons = soup.polygons;
     const double t_read = since(t);
+    t = std::chrono::steady_clock::now();
+    Domain domain(soup);
+    const double t_repair = since(t);
+    soup = HM::IO::Surface_soup<Point_3>();
     const auto& sum = domain.input_summary();
+    std::vector<std::string> repairs;
+    auto note = [&](std::size_t n, const std::string& what) { if(n) repairs.push_back(human_count(n) + " " + what); };
+    note(sum.merged_points, "duplicate points merged");
+    note(sum.degenerate_triangles, "degenerate triangles removed");
+    note(sum.duplicate_triangles, "duplicate triangles removed");
+    note(sum.reversed_duplicates, "reversed duplicate triangles removed");
+    note(sum.sheet_triangles, "triangles kept as two-sided zero-thickness sheets");
+    note(sum.reoriented_triangles, "triangles reoriented");
+    note(sum.internal_triangles, "triangles inside the volume (overlapping parts) left out of the boundary");
     if(!quiet) {
-      std::cerr << "hexmesh: read " << input << ": " << domain.number_of_triangles() << " triangles";
-      if(sum.merged_points) std::cerr << ", " << sum.merged_points << " duplicate points merged";
-      if(sum.degenerate_triangles) std::cerr << ", " << sum.degenerate_triangles << " degenerate triangles removed";
-      std::cerr << "; inside test: " << (domain.has_exact_inside_test() ? "exact (closed surface)" : "winding number")
-                << (sum.reoriented ? " (inward orientation flipped)" : "") << " [" << t_read << " s]\n";
+      std::cerr << "hexmesh: read " << inputs.size() << " file" << (inputs.size() > 1 ? "s" : "") << ": "
+                << read_polygons << " polygons, " << read_points << " points, " << domain.patch_names().size()
+                << " part" << (domain.patch_names().size() > 1 ? "s" : "") << " [" << t_read << " s]\n";
+      std::cerr << "hexmesh: repair: " << (repairs.empty() ? std::string("nothing to repair") : "") ;
+      for(std::size_t i = 0; i < repairs.size(); ++i) std::cerr << (i ? ", " : "") << repairs[i];
+      std::cerr << " [" << t_repair << " s]\n";
+      std::cerr << "hexmesh: surface: " << domain.number_of_triangles() << " triangles, " << sum.components
+                << " component" << (sum.components == 1 ? "" : "s") << ", " << sum.boundary_edges << " boundary edges, "
+                << sum.non_manifold_edges << " non-manifold edges; inside test: "
+                << (domain.has_exact_inside_test() ? "exact (closed surface)" : "winding number (open or inconsistent surface)")
+                << "\n";
     }
     const CGAL::Bbox_3 bb = domain.bbox();
     const double extent = (std::max)({bb.xmax() - bb.xmin(), bb.ymax() - bb.ymin(), bb.zmax() - bb.zmin()});
@@ -244,21 +339,53 @@ int main(int argc, char** argv)
 
     Mesh mesh;
     HM::Status status;
+    std::vector<HM::Region_leak> leaks;
     namespace HP = HM::parameters;
     if(!has_box) {
       box = CGAL::Bbox_3(bb.xmin() - size, bb.ymin() - size, bb.zmin() - size, bb.xmax() + size, bb.ymax() + size, bb.zmax() + size);
     }
+    const std::size_t cell_limit = max_cells > 0 ? max_cells : std::size_t(-1);
+    // (CGAL's `visitor` must come last: its pack only chains CGAL's own names)
     if(has_seed)
-      status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).region_seed(seed).visitor(std::ref(progress)));
+      status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
+                                                               .leaks(std::back_inserter(leaks)).visitor(std::ref(progress)));
     else
-      status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).visitor(std::ref(progress)));
+      status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
+                                                               .leaks(std::back_inserter(leaks)).visitor(std::ref(progress)));
     if(status == HM::Status::CANCELED)
       std::cerr << "hexmesh: warning: cancelled; the valid, coarser mesh reached so far is kept\n";
+    if(status == HM::Status::CELL_LIMIT_REACHED)
+      std::cerr << "hexmesh: warning: refinement stopped before exceeding --max-cells " << max_cells
+                << "; the mesh is valid but coarser than the sizes asked for\n";
+    for(std::size_t i = 0; i < leaks.size(); ++i) {
+      const HM::Region_leak& l = leaks[i];
+      std::fprintf(stderr, "hexmesh: %s: leak %zu: the region reached %zu cells (volume %.6g) inside a body, through "
+                           "%zu faces (area %.6g) in the box (%.6g, %.6g, %.6g) - (%.6g, %.6g, %.6g): a hole in the "
+                           "surface there; %s\n",
+                   strict ? "error" : "warning", i + 1, l.cells, l.volume, l.passage_faces, l.passage_area,
+                   l.passage.xmin(), l.passage.ymin(), l.passage.zmin(), l.passage.xmax(), l.passage.ymax(), l.passage.zmax(),
+                   strict ? "nothing is written (--strict)" : "these cells are not meshed (the winding number decides)");
+    }
+    if(strict && !leaks.empty()) return INPUT;
     if(mesh.number_of_cells() == 0) {
-      std::cerr << "hexmesh: " << input << ": the region is empty: no cell of the grid lies "
+      std::cerr << "hexmesh: " << inputs[0] << ": the region is empty: no cell of the grid lies "
                 << (has_seed ? "in the seeded region" : "inside the surface")
                 << " (is the surface open, or the surface size too coarse for its thinnest part?)\n";
       return INPUT;
+    }
+
+    // patches: rename / merge, then types
+    if(!name_rules.empty())
+      mesh.rename_patches([&](const std::string& n) {
+        for(const Rule& r : name_rules)
+          if(std::regex_match(n, r.re)) return std::regex_replace(n, r.re, r.value);
+        return n;
+      });
+    mesh.patch_types.resize(mesh.patch_names.size());
+    for(std::size_t p = 0; p < mesh.patch_names.size(); ++p) {
+      mesh.patch_types[p] = mesh.patch_type(p);
+      for(const Rule& r : type_rules)
+        if(std::regex_match(mesh.patch_names[p], r.re)) mesh.patch_types[p] = r.value;
     }
 
     t = std::chrono::steady_clock::now();
@@ -274,19 +401,27 @@ int main(int argc, char** argv)
       std::cerr << "hexmesh: internal error: " << q.number_of_inverted_cells() << " inverted cells; nothing written\n";
       return INVALID;
     }
+    double volume = 0;
+    for(double v : q.cell_volume) volume += v;
 
     t = std::chrono::steady_clock::now();
     for(const std::string& o : outputs) {
-      const bool ok = is_vtu(o) ? HM::IO::write_VTU(o, mesh, q.scaled_jacobian) : HM::IO::write_OpenFOAM(o, mesh, pm);
+      bool ok = false;
+      switch(output_kind(o)) {
+        case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, q.scaled_jacobian); break;
+        case Output_kind::MSH: ok = HM::IO::write_MSH(o, mesh); break;
+        case Output_kind::MEDIT: ok = HM::IO::write_Medit(o, mesh); break;
+        case Output_kind::OPENFOAM: ok = HM::IO::write_OpenFOAM(o, mesh, pm); break;
+      }
       if(!ok) { std::cerr << "hexmesh: cannot write " << o << "\n"; return OUTPUT; }
     }
     const double t_write = since(t);
     const double total = since(t_start);
-    std::size_t nboundary = mesh.boundary_faces.size();
+    const std::size_t nboundary = mesh.boundary_faces.size();
 
     if(!quiet) {
-      std::printf("cells %zu  vertices %zu  hanging nodes %zu  boundary faces %zu  polyhedral faces %zu\n",
-                  mesh.number_of_cells(), mesh.number_of_vertices(), mesh.hanging_nodes.size(), nboundary, pm.faces.size());
+      std::printf("cells %zu  vertices %zu  hanging nodes %zu  boundary faces %zu  polyhedral faces %zu  volume %.9g\n",
+                  mesh.number_of_cells(), mesh.number_of_vertices(), mesh.hanging_nodes.size(), nboundary, pm.faces.size(), volume);
       std::printf("scaled Jacobian    min %.6g  mean %.6g  max %.6g\n", sj.min, sj.mean, sj.max);
       std::printf("non-orthogonality  min %.6g  mean %.6g  max %.6g  (degrees, internal faces)\n", no.min, no.mean, no.max);
       std::printf("skewness           min %.6g  mean %.6g  max %.6g\n", sk.min, sk.mean, sk.max);
@@ -294,20 +429,43 @@ int main(int argc, char** argv)
       std::printf("status %s  seconds %.3f  peak memory %.1f MiB\n", HM::status_name(status), total, peak_memory_mib());
       for(const std::string& o : outputs) std::printf("wrote %s\n", o.c_str());
     }
-    if(!report.empty()) {
+    if(!reports.empty()) {
       nlohmann::ordered_json j;
-      j["input"] = input;
-      j["options"] = {{"size", size}, {"surface_size", surface_size}, {"max_level", max_level}, {"region", region},
-                      {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}}};
-      j["input_summary"] = {{"triangles", domain.number_of_triangles()}, {"merged_points", sum.merged_points},
-                            {"degenerate_triangles", sum.degenerate_triangles}, {"closed", sum.closed},
-                            {"exact_inside_test", sum.exact_inside_test}, {"reoriented", sum.reoriented}};
+      j["inputs"] = inputs;
+      j["options"] = {{"size", size}, {"surface_size", surface_size}, {"scale", scale}, {"max_level", max_level},
+                      {"max_cells", max_cells}, {"region", region}, {"strict", strict},
+                      {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},
+                      {"patch_name", patch_name_rules}, {"patch_type", patch_type_rules}};
+      j["input_summary"] = {{"polygons_read", read_polygons}, {"points_read", read_points},
+                            {"triangles", domain.number_of_triangles()}, {"parts", domain.patch_names().size()},
+                            {"components", sum.components}, {"boundary_edges", sum.boundary_edges},
+                            {"non_manifold_edges", sum.non_manifold_edges}, {"closed", sum.closed},
+                            {"self_intersecting", sum.self_intersecting}, {"exact_inside_test", sum.exact_inside_test}};
+      j["repair"] = {{"merged_points", sum.merged_points}, {"degenerate_triangles", sum.degenerate_triangles},
+                     {"duplicate_triangles", sum.duplicate_triangles}, {"reversed_duplicates", sum.reversed_duplicates},
+                     {"sheet_triangles", sum.sheet_triangles}, {"reoriented_triangles", sum.reoriented_triangles},
+                     {"internal_triangles", sum.internal_triangles}};
+      nlohmann::ordered_json jl = nlohmann::ordered_json::array();
+      for(const HM::Region_leak& l : leaks) {
+        auto bj = [](const CGAL::Bbox_3& b) { return nlohmann::ordered_json{b.xmin(), b.ymin(), b.zmin(), b.xmax(), b.ymax(), b.zmax()}; };
+        jl.push_back({{"cells", l.cells}, {"volume", l.volume}, {"bbox", bj(l.bbox)}, {"passage", bj(l.passage)},
+                      {"passage_faces", l.passage_faces}, {"passage_area", l.passage_area},
+                      {"max_winding_number", l.max_winding_number}});
+      }
+      j["leaks"] = jl;
       j["status"] = HM::status_name(status);
       j["counts"] = {{"cells", mesh.number_of_cells()}, {"vertices", mesh.number_of_vertices()},
                      {"hanging_nodes", mesh.hanging_nodes.size()}, {"boundary_faces", nboundary},
                      {"polyhedral_faces", pm.faces.size()}, {"internal_faces", pm.number_of_internal_faces()}};
+      j["volume"] = volume;
+      nlohmann::ordered_json jp = nlohmann::ordered_json::array();
+      const auto psizes = mesh.patch_sizes();
+      for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
+        jp.push_back({{"name", mesh.patch_names[p]}, {"type", mesh.patch_type(p)}, {"faces", psizes[p]}});
+      j["patches"] = jp;
       nlohmann::ordered_json sec;
       sec["read"] = t_read;
+      sec["repair"] = t_repair;
       for(const auto& s : progress.seconds) sec[s.first] = s.second;
       sec["quality"] = t_quality; sec["write"] = t_write; sec["total"] = total;
       j["seconds"] = sec;
@@ -324,17 +482,21 @@ int main(int argc, char** argv)
       }
       auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
       j["quality"] = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
+      add_quality_details(j["quality"], mesh, pm, q);
       j["outputs"] = outputs;
-      std::ofstream os(report);
-      os << j.dump(2) << "\n";
-      if(!os) { std::cerr << "hexmesh: cannot write " << report << "\n"; return OUTPUT; }
+      for(const std::string& r : reports) {
+        std::ofstream os(r);
+        if(fs::path(r).extension() == ".html") os << html_report(j, mesh, q.scaled_jacobian);
+        else os << j.dump(2) << "\n";
+        if(!os) { std::cerr << "hexmesh: cannot write " << r << "\n"; return OUTPUT; }
+      }
     }
     return status == HM::Status::CANCELED ? CANCELLED : OK;
   } catch(const HM::Input_error& e) {
     std::cerr << "hexmesh: " << e.what() << "\n";
     return INPUT;
   } catch(const std::bad_alloc&) {
-    std::cerr << "hexmesh: out of memory; use a larger --size or --surface-size\n";
+    std::cerr << "hexmesh: out of memory; use a larger --size or --surface-size, or --max-cells\n";
     return INPUT;
   } catch(const std::logic_error& e) {
     std::cerr << "hexmesh: internal error: " << e.what() << "\n";

@@ -106,12 +106,51 @@ public:
   std::vector<Hanging_node> hanging_nodes;
   std::vector<Boundary_face> boundary_faces;
   std::vector<std::string> patch_names;
+  /// the type of each patch, in OpenFOAM's words: `patch` (default for the box faces), `wall`
+  /// (default for the surface parts), `symmetryPlane`, ...; writers that know no types ignore it
+  std::vector<std::string> patch_types;
   Bbox_3 box;   ///< the meshing box
 
   void clear()
   {
     points.clear(); hexahedra.clear(); cell_levels.clear(); hanging_nodes.clear();
-    boundary_faces.clear(); patch_names.clear(); box = Bbox_3();
+    boundary_faces.clear(); patch_names.clear(); patch_types.clear(); box = Bbox_3();
+  }
+
+  /// the type of patch `p` (`patch_types[p]`; when absent, `patch` for 0..5 and `wall` otherwise)
+  std::string patch_type(std::size_t p) const
+  {
+    if(p < patch_types.size() && !patch_types[p].empty()) return patch_types[p];
+    return p < 6 ? "patch" : "wall";
+  }
+
+  /// the number of boundary faces of each patch
+  std::vector<std::size_t> patch_sizes() const
+  {
+    std::vector<std::size_t> n(patch_names.size(), 0);
+    for(const Boundary_face& f : boundary_faces) ++n[std::size_t(f.patch)];
+    return n;
+  }
+
+  /*!
+   * renames every patch `p` to `rename(patch_names[p])`; patches that end up with the same name are
+   * merged into one, which keeps the type of the first of them and the position of the first.
+   */
+  template <typename Rename>
+  void rename_patches(const Rename& rename)
+  {
+    std::vector<std::string> names, types;
+    std::vector<int> to(patch_names.size());
+    for(std::size_t p = 0; p < patch_names.size(); ++p) {
+      const std::string n = rename(patch_names[p]);
+      std::size_t q = 0;
+      while(q < names.size() && names[q] != n) ++q;
+      if(q == names.size()) { names.push_back(n); types.push_back(patch_type(p)); }
+      to[p] = int(q);
+    }
+    for(Boundary_face& f : boundary_faces) f.patch = to[std::size_t(f.patch)];
+    patch_names = std::move(names);
+    patch_types = std::move(types);
   }
 
   std::size_t number_of_vertices() const { return points.size(); }

@@ -4,6 +4,9 @@
 #ifndef CGAL_HEX_MESHING_3_STATUS_H
 #define CGAL_HEX_MESHING_3_STATUS_H
 
+#include <CGAL/Bbox_3.h>
+
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +47,26 @@ class Input_error : public std::runtime_error
 {
 public:
   explicit Input_error(const std::string& what) : std::runtime_error(what) {}
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Functions
+ * \brief a leak of a seeded region: cells the flood fill from the seed reached (through a hole or
+ * a crack of the surface wider than the cells) but that the winding number puts inside a body.
+ *
+ * The winding number decides: these cells are not meshed. `passage` bounds the grid faces across
+ * which the flood entered the leak (the faces between the leak and the cells that stay), which is
+ * where the hole is.
+ */
+struct Region_leak
+{
+  std::size_t cells = 0;            ///< cells of the leak
+  double volume = 0;                ///< their volume
+  Bbox_3 bbox;                      ///< bounding box of the leak's cells
+  Bbox_3 passage;                   ///< bounding box of the faces between the leak and the region
+  std::size_t passage_faces = 0;    ///< number of those faces
+  double passage_area = 0;          ///< their area
+  double max_winding_number = 0;    ///< the largest winding number at a leak cell's centre
 };
 
 } // namespace Hex_meshing_3

@@ -24,8 +24,11 @@
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/helpers.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 
+#include <algorithm>
 #include <array>
+#include <map>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -59,15 +62,23 @@ public:
   typedef typename GeomTraits::Tetrahedron_3  Tetrahedron_3;
   typedef std::array<std::uint32_t, 3>        Triangle_indices;
 
-  /// what happened to the soup when the domain was built
+  /// what happened to the soup when the domain was built: the repairs, and what the surface is
   struct Input_summary
   {
     std::size_t input_points = 0, input_triangles = 0;
     std::size_t merged_points = 0;          ///< exactly coincident points merged
-    std::size_t degenerate_triangles = 0;   ///< removed: two equal corners, or collinear
+    std::size_t degenerate_triangles = 0;   ///< removed: two equal corners, or collinear (exact)
+    std::size_t duplicate_triangles = 0;    ///< removed: same corners, same orientation as a kept face
+    std::size_t reversed_duplicates = 0;    ///< removed: same corners, opposite orientation to a kept face
+    std::size_t sheet_triangles = 0;        ///< kept faces of zero-thickness sheets (a face and its reversed copy), two-sided
+    std::size_t reoriented_triangles = 0;   ///< flipped to agree with their neighbours or to face outward
+    std::size_t internal_triangles = 0;     ///< left out of the boundary: inside the volume on both sides (overlapping parts)
+    std::size_t components = 0;             ///< edge-connected components (sheets excluded)
+    std::size_t boundary_edges = 0;         ///< edges of one face: holes, cracks, open rims (after repair)
+    std::size_t non_manifold_edges = 0;     ///< edges of more than two faces (after repair)
     bool closed = false;                    ///< a closed, manifold, consistently oriented mesh
     bool self_intersecting = false;         ///< tested only when `closed`
-    bool reoriented = false;                ///< a closed inward-oriented mesh was flipped
+    bool reoriented = false;                ///< some faces were reoriented
     bool exact_inside_test = false;         ///< `Side_of_triangle_mesh` is used
   };
 
@@ -88,19 +99,25 @@ public:
   }
 
   /*!
-   * reads the surface from a file (see `IO::read_surface()`); the part is named after the file's
-   * base name.
+   * builds the domain from a soup read by `IO::read_surface()`; its parts become the domain's parts.
    * \throws Input_error
    */
-  explicit Surface_domain_3(const std::string& filename)
+  explicit Surface_domain_3(const IO::Surface_soup<Point_3>& soup)
   {
-    std::vector<Point_3> pts;
-    std::vector<Triangle_indices> tris;
-    IO::read_surface(filename, pts, tris);
-    std::string base = filename.substr(filename.find_last_of("/\\") + 1);
-    base = base.substr(0, base.find('.'));
-    if(base.empty()) base = "surface";
-    init(std::move(pts), std::move(tris), {}, {base});
+    init(soup.points, soup.triangles, soup.part_of_triangle, soup.part_names);
+  }
+
+  /*!
+   * reads the surface from a file (see `IO::read_surface()`): OBJ groups and STL solids are parts,
+   * otherwise the file is one part named after its base name.
+   * \throws Input_error
+   */
+  explicit Surface_domain_3(const std::string& filename, double scale = 1.0)
+  {
+    IO::Surface_soup<Point_3> soup;
+    IO::read_surface(filename, soup, scale);
+    init(std::move(soup.points), std::move(soup.triangles), std::move(soup.part_of_triangle),
+         std::move(soup.part_names));
   }
   /// @}
 
@@ -115,6 +132,8 @@ public:
   const std::vector<Point_3>& points() const { return m_points; }
   const std::vector<Triangle_indices>& triangle_indices() const { return m_indices; }
   const Input_summary& input_summary() const { return m_summary; }
+  /// is triangle `i` part of a zero-thickness sheet (two-sided: it bounds no volume)?
+  bool is_two_sided(std::size_t i) const { return m_two_sided[i]; }
   /// `true` if `is_inside()` is exact (closed, consistently oriented, not self-intersecting input)
   bool has_exact_inside_test() const { return bool(m_side); }
   /// @}
@@ -234,6 +253,9 @@ private:
 
     // remove degenerate triangles (exact collinearity), keep patch ids aligned
     m_points = std::move(points);
+    std::vector<Triangle_indices> tris;
+    std::vector<int> parts;
+    tris.reserve(polys.size());
     for(std::size_t i = 0; i < polys.size(); ++i) {
       const auto& q = polys[i];
       if(q[0] == q[1] || q[1] == q[2] || q[0] == q[2] ||
@@ -241,34 +263,40 @@ private:
         ++m_summary.degenerate_triangles;
         continue;
       }
-      m_indices.push_back({{std::uint32_t(q[0]), std::uint32_t(q[1]), std::uint32_t(q[2])}});
-      m_patch.push_back(patch_of_triangle[i]);
+      tris.push_back({{std::uint32_t(q[0]), std::uint32_t(q[1]), std::uint32_t(q[2])}});
+      parts.push_back(patch_of_triangle[i]);
     }
-    if(m_indices.empty())
+    polys.clear();
+    polys.shrink_to_fit();
+    if(tris.empty())
       throw Input_error("surface: no non-degenerate triangle");
     m_patch_names = std::move(patch_names);
+    repair(tris, parts);
 
     // closed, consistently oriented, no self-intersection: exact inside test
-    std::vector<std::vector<std::size_t>> tri_polys(m_indices.size());
-    for(std::size_t i = 0; i < m_indices.size(); ++i)
-      tri_polys[i].assign(m_indices[i].begin(), m_indices[i].end());
-    if(PMP::is_polygon_soup_a_polygon_mesh(tri_polys)) {
-      m_mesh = std::make_unique<Mesh>();
-      PMP::polygon_soup_to_polygon_mesh(m_points, tri_polys, *m_mesh);
-      if(CGAL::is_closed(*m_mesh) && CGAL::is_triangle_mesh(*m_mesh)) {
-        m_summary.self_intersecting = PMP::does_self_intersect(*m_mesh);
-        if(!m_summary.self_intersecting) {
-          m_summary.closed = true;
-          if(!PMP::is_outward_oriented(*m_mesh)) {
-            m_summary.reoriented = true;
-            for(Triangle_indices& t : m_indices) std::swap(t[1], t[2]);
-            PMP::reverse_face_orientations(*m_mesh);
+    if(m_summary.sheet_triangles == 0 && m_summary.boundary_edges == 0 && m_summary.non_manifold_edges == 0) {
+      std::vector<std::vector<std::size_t>> tri_polys(m_indices.size());
+      for(std::size_t i = 0; i < m_indices.size(); ++i)
+        tri_polys[i].assign(m_indices[i].begin(), m_indices[i].end());
+      if(PMP::is_polygon_soup_a_polygon_mesh(tri_polys)) {
+        m_mesh = std::make_unique<Mesh>();
+        PMP::polygon_soup_to_polygon_mesh(m_points, tri_polys, *m_mesh);
+        if(CGAL::is_closed(*m_mesh) && CGAL::is_triangle_mesh(*m_mesh)) {
+          m_summary.self_intersecting = PMP::does_self_intersect(*m_mesh);
+          if(!m_summary.self_intersecting) {
+            m_summary.closed = true;
+            if(!PMP::is_outward_oriented(*m_mesh)) {   // e.g. several nested shells
+              m_summary.reoriented = true;
+              m_summary.reoriented_triangles += m_indices.size();
+              for(Triangle_indices& t : m_indices) std::swap(t[1], t[2]);
+              PMP::reverse_face_orientations(*m_mesh);
+            }
+            m_side = std::make_unique<Side>(*m_mesh);
+            m_summary.exact_inside_test = true;
           }
-          m_side = std::make_unique<Side>(*m_mesh);
-          m_summary.exact_inside_test = true;
         }
+        if(!m_side) m_mesh.reset();
       }
-      if(!m_side) m_mesh.reset();
     }
 
     m_triangles.reserve(m_indices.size());
@@ -280,6 +308,7 @@ private:
       m_triangles.emplace_back(m_points[t[0]], m_points[t[1]], m_points[t[2]]);
       m_tri_bboxes.push_back(m_triangles.back().bbox());
       m_bbox += m_tri_bboxes.back();
+      if(m_two_sided[m_triangles.size() - 1]) continue;   // a sheet and its reversed copy cancel out
       for(int k = 0; k < 3; ++k) {
         flat.push_back(CGAL::to_double(m_points[t[k]].x()));
         flat.push_back(CGAL::to_double(m_points[t[k]].y()));
@@ -287,6 +316,260 @@ private:
       }
     }
     m_wn.build(flat, 2.0);
+    if(!m_side) remove_internal_triangles();
+  }
+
+  // Overlapping parts (a spout pushed into a body, parts exported with overlaps): a triangle whose
+  // two sides are both inside (winding number >= 0.5 just off it on either side) bounds nothing
+  // and would only stop the grid inside the volume; it is left out of the boundary (the winding
+  // number keeps it). Probed at the centroid, 1e-6 of the bounding box diagonal off the triangle.
+  void remove_internal_triangles()
+  {
+    const double diag = std::sqrt(CGAL::square(m_bbox.xmax() - m_bbox.xmin()) + CGAL::square(m_bbox.ymax() - m_bbox.ymin()) +
+                                  CGAL::square(m_bbox.zmax() - m_bbox.zmin()));
+    const double eps = 1e-6 * diag;
+    std::vector<char> internal(m_indices.size(), 0);
+    for(std::size_t i = 0; i < m_indices.size(); ++i) {
+      const auto a = internal_vec(m_points[m_indices[i][0]]), b = internal_vec(m_points[m_indices[i][1]]),
+                 c = internal_vec(m_points[m_indices[i][2]]);
+      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+      double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if(!(len > 0)) continue;
+      std::array<double, 3> p, q;
+      for(int k = 0; k < 3; ++k) {
+        const double m = (a[k] + b[k] + c[k]) / 3.0;
+        p[std::size_t(k)] = m + eps * n[k] / len;
+        q[std::size_t(k)] = m - eps * n[k] / len;
+      }
+      if(m_wn(p) >= 0.5 && m_wn(q) >= 0.5) internal[i] = 1;
+    }
+    std::size_t j = 0;
+    m_bbox = Bbox_3();
+    for(std::size_t i = 0; i < m_indices.size(); ++i) {
+      if(internal[i]) { ++m_summary.internal_triangles; continue; }
+      m_indices[j] = m_indices[i]; m_triangles[j] = m_triangles[i]; m_tri_bboxes[j] = m_tri_bboxes[i];
+      m_patch[j] = m_patch[i]; m_two_sided[j] = m_two_sided[i];
+      m_bbox += m_tri_bboxes[j];
+      ++j;
+    }
+    if(j == 0) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)");
+    m_indices.resize(j); m_triangles.resize(j); m_tri_bboxes.resize(j); m_patch.resize(j); m_two_sided.resize(j);
+  }
+
+  static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b)
+  {
+    return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+  }
+
+  /*
+   * Repairs, in order, each counted in the summary:
+   * 1. faces with the same three corners are kept once; a copy with the same orientation is a
+   *    duplicate, a copy with the opposite orientation a reversed duplicate;
+   * 2. faces that came with a reversed copy are grouped by shared edges. A group whose free edges
+   *    each meet exactly one other face is a patch of a larger surface (the reversed copies were
+   *    spurious): its faces stay one-sided and get their neighbours' orientation in step 3. Any
+   *    other group (it has an edge of no other face, or meets a non-manifold edge, or is closed)
+   *    is a zero-thickness sheet, as the windshield of the motorBike: kept, two-sided, excluded
+   *    from the winding number (it bounds no volume) but still cut by and blocking the grid;
+   * 3. the one-sided faces are oriented consistently (CGAL's orient_polygon_soup); then each
+   *    edge-connected component is oriented outward if it is closed (positive signed volume), and
+   *    otherwise keeps the orientation most of its input faces had.
+   */
+  void repair(std::vector<Triangle_indices>& tris, std::vector<int>& parts)
+  {
+    namespace PMP = CGAL::Polygon_mesh_processing;
+    const std::size_t n = tris.size();
+    // 1. duplicates: sort by the sorted corner triple (stable: the first face of a group is kept)
+    std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> keyed(n);
+    for(std::size_t i = 0; i < n; ++i) {
+      std::array<std::uint32_t, 3> k = tris[i];
+      std::sort(k.begin(), k.end());
+      keyed[i] = {k, std::uint32_t(i)};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    auto parity = [](const Triangle_indices& t) {   // even permutation of the sorted triple?
+      return (t[0] < t[1]) + (t[1] < t[2]) + (t[2] < t[0]) == 2;
+    };
+    std::vector<std::uint32_t> kept;
+    std::vector<char> had_reversed;
+    kept.reserve(n);
+    for(std::size_t i = 0; i < n;) {
+      std::size_t j = i;
+      while(j < n && keyed[j].first == keyed[i].first) ++j;
+      const std::uint32_t rep = keyed[i].second;   // lowest index of the group
+      bool reversed = false;
+      for(std::size_t k = i + 1; k < j; ++k) {
+        if(parity(tris[keyed[k].second]) == parity(tris[rep])) ++m_summary.duplicate_triangles;
+        else { ++m_summary.reversed_duplicates; reversed = true; }
+      }
+      kept.push_back(rep);
+      had_reversed.push_back(reversed);
+      i = j;
+    }
+    // back to input order (deterministic, and parts of a file stay together)
+    std::vector<std::size_t> order(kept.size());
+    for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return kept[a] < kept[b]; });
+    const std::size_t m = kept.size();
+    m_indices.resize(m);
+    m_patch.resize(m);
+    m_two_sided.assign(m, false);
+    std::vector<char> candidate(m);
+    for(std::size_t i = 0; i < m; ++i) {
+      m_indices[i] = tris[kept[order[i]]];
+      m_patch[i] = parts[kept[order[i]]];
+      candidate[i] = had_reversed[order[i]];
+    }
+    tris.clear(); tris.shrink_to_fit();
+
+    // edges -> faces
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
+    edges.reserve(3 * m);
+    for(std::size_t f = 0; f < m; ++f)
+      for(int k = 0; k < 3; ++k)
+        edges.push_back({edge_key(m_indices[f][k], m_indices[f][(k + 1) % 3]), std::uint32_t(f)});
+    std::sort(edges.begin(), edges.end());
+    std::vector<std::size_t> edge_begin;   // start of each distinct edge's run in `edges`
+    for(std::size_t i = 0; i < edges.size(); ++i)
+      if(i == 0 || edges[i].first != edges[i - 1].first) edge_begin.push_back(i);
+    edge_begin.push_back(edges.size());
+    for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
+      const std::size_t deg = edge_begin[e + 1] - edge_begin[e];
+      if(deg == 1) ++m_summary.boundary_edges;
+      else if(deg > 2) ++m_summary.non_manifold_edges;
+    }
+
+    // union-find
+    std::vector<std::uint32_t> uf(m);
+    for(std::size_t i = 0; i < m; ++i) uf[i] = std::uint32_t(i);
+    auto find = [&](std::uint32_t x) {
+      while(uf[x] != x) { uf[x] = uf[uf[x]]; x = uf[x]; }
+      return x;
+    };
+    auto unite = [&](std::uint32_t a, std::uint32_t b) {
+      a = find(a); b = find(b);
+      if(a != b) uf[(std::max)(a, b)] = (std::min)(a, b);
+    };
+
+    // 2. groups of faces that had a reversed copy: sheets or patches of a surface
+    if(m_summary.reversed_duplicates > 0) {
+      for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
+        std::uint32_t first = UINT32_MAX;
+        for(std::size_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i) {
+          const std::uint32_t f = edges[i].second;
+          if(!candidate[f]) continue;
+          if(first == UINT32_MAX) first = f; else unite(first, f);
+        }
+      }
+      std::vector<char> is_patch(m, 1), has_free(m, 0);   // per group root
+      for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
+        std::size_t in = 0, out = 0;
+        std::uint32_t root = UINT32_MAX;
+        bool several_groups = false;
+        for(std::size_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i) {
+          const std::uint32_t f = edges[i].second;
+          if(candidate[f]) {
+            ++in;
+            const std::uint32_t r = find(f);
+            if(root != UINT32_MAX && r != root) several_groups = true;
+            root = r;
+          } else ++out;
+        }
+        if(in == 0) continue;
+        if(several_groups || in > 2) { is_patch[root] = 0; continue; }
+        if(in == 1) {   // a free edge of the group
+          has_free[root] = 1;
+          if(out != 1) is_patch[root] = 0;
+        } else if(out != 0) is_patch[root] = 0;   // non-manifold inside the group
+      }
+      for(std::size_t f = 0; f < m; ++f)
+        if(candidate[f]) {
+          const std::uint32_t r = find(f);
+          if(!is_patch[r] || !has_free[r]) { m_two_sided[f] = true; ++m_summary.sheet_triangles; }
+        }
+      for(std::size_t i = 0; i < m; ++i) uf[i] = std::uint32_t(i);
+    }
+
+    // 3. orientation of the one-sided faces
+    std::vector<std::uint32_t> one_sided;
+    for(std::size_t f = 0; f < m; ++f) if(!m_two_sided[f]) one_sided.push_back(std::uint32_t(f));
+    if(one_sided.empty()) return;
+    std::vector<Point_3> pts = m_points;
+    std::vector<std::vector<std::size_t>> polys(one_sided.size());
+    for(std::size_t i = 0; i < one_sided.size(); ++i)
+      polys[i].assign(m_indices[one_sided[i]].begin(), m_indices[one_sided[i]].end());
+    PMP::orient_polygon_soup(pts, polys);
+    std::map<Point_3, std::size_t> original;   // only needed when points were duplicated
+    if(pts.size() > m_points.size())
+      for(std::size_t i = 0; i < m_points.size(); ++i) original.emplace(m_points[i], i);
+    std::vector<char> flipped(m, 0);
+    for(std::size_t i = 0; i < one_sided.size(); ++i) {
+      Triangle_indices t;
+      for(int k = 0; k < 3; ++k) {
+        const std::size_t v = polys[i][std::size_t(k)];
+        t[std::size_t(k)] = std::uint32_t(v < m_points.size() ? v : original.at(pts[v]));
+      }
+      const Triangle_indices& o = m_indices[one_sided[i]];
+      const bool same = (t[0] == o[0] && t[1] == o[1]) || (t[0] == o[1] && t[1] == o[2]) || (t[0] == o[2] && t[1] == o[0]);
+      if(!same) flipped[one_sided[i]] = 1;
+    }
+    polys.clear(); pts.clear();
+    // components of one-sided faces through manifold edges
+    for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
+      std::uint32_t f0 = UINT32_MAX, f1 = UINT32_MAX;
+      std::size_t cnt = 0;
+      for(std::size_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i) {
+        const std::uint32_t f = edges[i].second;
+        if(m_two_sided[f]) continue;
+        ++cnt;
+        if(f0 == UINT32_MAX) f0 = f; else f1 = f;
+      }
+      if(cnt == 2) unite(f0, f1);
+    }
+    std::vector<char> comp_closed(m, 1);
+    for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
+      std::size_t cnt = 0;
+      std::uint32_t f0 = UINT32_MAX;
+      for(std::size_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i)
+        if(!m_two_sided[edges[i].second]) { ++cnt; f0 = edges[i].second; }
+      if(cnt != 0 && cnt != 2) {
+        for(std::size_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i)
+          if(!m_two_sided[edges[i].second]) comp_closed[find(edges[i].second)] = 0;
+      }
+      (void)f0;
+    }
+    std::vector<double> volume(m, 0.0);
+    std::vector<std::size_t> size(m, 0), nflipped(m, 0);
+    for(std::uint32_t f : one_sided) {
+      const std::uint32_t r = find(f);
+      ++size[r];
+      nflipped[r] += flipped[f];
+      const Triangle_indices& t = m_indices[f];
+      const auto o = internal_vec(m_points[m_indices[one_sided[0]][0]]);   // origin near the data
+      auto a = internal_vec(m_points[t[0]]), b = internal_vec(m_points[t[1]]), c = internal_vec(m_points[t[2]]);
+      for(int k = 0; k < 3; ++k) { a[k] -= o[k]; b[k] -= o[k]; c[k] -= o[k]; }
+      const double v = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+      volume[r] += flipped[f] ? -v : v;   // oriented as orient_polygon_soup left it
+    }
+    std::vector<char> flip_comp(m, 0);
+    for(std::uint32_t f : one_sided) {
+      const std::uint32_t r = find(f);
+      if(r != f) continue;
+      ++m_summary.components;
+      if(comp_closed[r]) flip_comp[r] = volume[r] < 0;
+      else flip_comp[r] = 2 * nflipped[r] > size[r];   // keep the input's majority orientation
+    }
+    for(std::uint32_t f : one_sided) {
+      const bool flip = flipped[f] != flip_comp[find(f)];
+      if(flip) { std::swap(m_indices[f][1], m_indices[f][2]); ++m_summary.reoriented_triangles; }
+    }
+    if(m_summary.reoriented_triangles) m_summary.reoriented = true;
+  }
+
+  static std::array<double, 3> internal_vec(const Point_3& p)
+  {
+    return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
   }
 
   std::vector<Point_3> m_points;
@@ -294,6 +577,7 @@ private:
   std::vector<Triangle_3> m_triangles;
   std::vector<Bbox_3> m_tri_bboxes;
   std::vector<int> m_patch;
+  std::vector<bool> m_two_sided;
   std::vector<std::string> m_patch_names;
   Bbox_3 m_bbox;
   Input_summary m_summary;

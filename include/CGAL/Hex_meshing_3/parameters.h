@@ -20,6 +20,7 @@ namespace internal_np {
 enum max_cells_t { max_cells };
 enum region_seed_t { region_seed };
 enum meshing_box_t { meshing_box };
+enum leaks_t { leaks };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -39,6 +40,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::meshing_box_t, Named_parameters>
   meshing_box(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::leaks_t, Named_parameters>
+  leaks(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -57,6 +62,10 @@ Named_parameters<V, internal_np::region_seed_t> region_seed(const V& v) { return
 /// grown by one cell size on every side
 template <typename V>
 Named_parameters<V, internal_np::meshing_box_t> meshing_box(const V& v) { return { v }; }
+
+/// an output iterator receiving the `Region_leak`s of a seeded region (largest first)
+template <typename V>
+Named_parameters<V, internal_np::leaks_t> leaks(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }

@@ -11,13 +11,20 @@
 // - non-orthogonality, skewness and aspect ratio: OpenFOAM's (primitiveMeshTools, v1912), computed
 //   on the polyhedral form of the mesh with OpenFOAM's face and cell centres, so that they agree
 //   with what `checkMesh` prints.
+// - face warpage: ours (no tool prints it under this name), see `face_warpage()`.
+// Also: histograms with fixed ranges per measure (`histogram()`, `quality_histograms()`) and the
+// worst elements with their locations (`worst_cells()`).
 
+#include <CGAL/number_utils.h>
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -75,6 +82,35 @@ struct OpenFOAM_geometry
   std::vector<Vec3> face_centres, face_areas, cell_centres;
   std::vector<double> cell_volumes;
 
+  /// OpenFOAM's centre and area vector of the face with vertices `F` (one face of `compute()`)
+  template <typename Point_3, typename Index>
+  static void face_centre_and_area(const std::vector<Point_3>& points, const std::vector<Index>& F,
+                                   Vec3& centre, Vec3& area)
+  {
+    using namespace internal;
+    const std::size_t n = F.size();
+    if(n == 3) {
+      const Vec3 a = vec(points[F[0]]), b = vec(points[F[1]]), c = vec(points[F[2]]);
+      centre = mul(add(add(a, b), c), 1.0 / 3.0);
+      area = mul(cross(sub(b, a), sub(c, a)), 0.5);
+      return;
+    }
+    Vec3 avg{{0, 0, 0}};
+    for(auto v : F) avg = add(avg, vec(points[v]));
+    avg = mul(avg, 1.0 / double(n));
+    Vec3 sumN{{0, 0, 0}}, sumAc{{0, 0, 0}};
+    double sumA = 0;
+    for(std::size_t i = 0; i < n; ++i) {
+      const Vec3 p = vec(points[F[i]]), q = vec(points[F[(i + 1) % n]]);
+      const Vec3 c = add(add(p, q), avg);
+      const Vec3 N = cross(sub(q, p), sub(avg, p));
+      const double a = norm(N);
+      sumN = add(sumN, N); sumA += a; sumAc = add(sumAc, mul(c, a));
+    }
+    centre = sumA < 1e-300 ? avg : mul(sumAc, 1.0 / (3.0 * sumA));
+    area = mul(sumN, 0.5);
+  }
+
   template <typename Point_3>
   void compute(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm)
   {
@@ -82,30 +118,7 @@ struct OpenFOAM_geometry
     const std::size_t nf = pm.faces.size();
     face_centres.assign(nf, Vec3{{0, 0, 0}});
     face_areas.assign(nf, Vec3{{0, 0, 0}});
-    for(std::size_t f = 0; f < nf; ++f) {
-      const auto& F = pm.faces[f];
-      const std::size_t n = F.size();
-      if(n == 3) {
-        const Vec3 a = vec(points[F[0]]), b = vec(points[F[1]]), c = vec(points[F[2]]);
-        face_centres[f] = mul(add(add(a, b), c), 1.0 / 3.0);
-        face_areas[f] = mul(cross(sub(b, a), sub(c, a)), 0.5);
-        continue;
-      }
-      Vec3 avg{{0, 0, 0}};
-      for(auto v : F) avg = add(avg, vec(points[v]));
-      avg = mul(avg, 1.0 / double(n));
-      Vec3 sumN{{0, 0, 0}}, sumAc{{0, 0, 0}};
-      double sumA = 0;
-      for(std::size_t i = 0; i < n; ++i) {
-        const Vec3 p = vec(points[F[i]]), q = vec(points[F[(i + 1) % n]]);
-        const Vec3 c = add(add(p, q), avg);
-        const Vec3 N = cross(sub(q, p), sub(avg, p));
-        const double a = norm(N);
-        sumN = add(sumN, N); sumA += a; sumAc = add(sumAc, mul(c, a));
-      }
-      face_centres[f] = sumA < 1e-300 ? avg : mul(sumAc, 1.0 / (3.0 * sumA));
-      face_areas[f] = mul(sumN, 0.5);
-    }
+    for(std::size_t f = 0; f < nf; ++f) face_centre_and_area(points, pm.faces[f], face_centres[f], face_areas[f]);
     const std::size_t nc = pm.number_of_cells;
     std::vector<Vec3> est(nc, Vec3{{0, 0, 0}});
     std::vector<int> nfaces(nc, 0);
@@ -145,6 +158,7 @@ struct Mesh_quality
   std::vector<double> non_orthogonality;  ///< per internal face, degrees
   std::vector<double> skewness;           ///< per face (internal and boundary), OpenFOAM's
   std::vector<double> cell_volume;        ///< per cell
+  std::vector<double> face_warpage;       ///< per face (internal and boundary), degrees, see `face_warpage()`
 
   struct Range { double min = 0, mean = 0, max = 0; std::size_t count = 0; };
   static Range range(const std::vector<double>& v)
@@ -161,6 +175,55 @@ struct Mesh_quality
   std::size_t number_of_inverted_cells() const
   { return std::size_t(std::count_if(scaled_jacobian.begin(), scaled_jacobian.end(), [](double x) { return x <= 0; })); }
 };
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the warpage of each face of `pm`, in degrees: 0 for a planar convex face.
+ *
+ * Our definition (no checking tool prints this measure under this name): the face of n vertices
+ * p_0 .. p_{n-1} is cut into the n fan triangles (p_i, p_{i+1}, c) around its centre c as OpenFOAM
+ * computes it (`OpenFOAM_geometry::face_centres`); the warpage is the largest angle between the
+ * normal of a fan triangle and the face's area vector S (`OpenFOAM_geometry::face_areas`), in
+ * [0, 180] degrees. A fan triangle that is degenerate (its two edges at p_i make an angle whose
+ * sine is below 1e-10, e.g. c on the line through p_i p_{i+1}) has no normal and is skipped; a face
+ * whose area vector vanishes gets 0. A fan triangle folded over (a badly warped face, or a planar
+ * face that is not star-shaped around its centre) gives an angle above 90 degrees, 180 if planar.
+ * The faces of this package's meshes (rectangles, with hanging nodes on their edges) are convex.
+ *
+ * OpenFOAM's `checkMesh -allGeometry` "face flatness" (`primitiveMeshTools::faceFlatness()`) is
+ * related but different: it is the ratio |S| / sum |N_i| of the area vector's magnitude to the sum
+ * of the fan triangles' areas around the same centre (1 for a planar face; checkMesh warns below
+ * 0.8), a ratio rather than an angle.
+ *
+ * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)`.
+ */
+template <typename Point_3>
+std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm,
+                                 const OpenFOAM_geometry& g)
+{
+  using namespace internal;
+  const double rad_to_deg = 180.0 / 3.14159265358979323846;
+  std::vector<double> w(pm.faces.size(), 0.0);
+  for(std::size_t f = 0; f < pm.faces.size(); ++f) {
+    const auto& F = pm.faces[f];
+    const Vec3& S = g.face_areas[f];
+    const double mS = norm(S);
+    if(!(mS > 0) || F.size() < 3) continue;
+    const Vec3& c = g.face_centres[f];
+    const std::size_t n = F.size();
+    double worst = 1.0;   // smallest cosine
+    for(std::size_t i = 0; i < n; ++i) {
+      const Vec3 p = vec(points[F[i]]), q = vec(points[F[(i + 1) % n]]);
+      const Vec3 e1 = sub(q, p), e2 = sub(c, p);
+      const Vec3 N = cross(e1, e2);
+      const double mN = norm(N);
+      if(!(mN > 1e-10 * norm(e1) * norm(e2))) continue;
+      worst = (std::min)(worst, dot(N, S) / (mN * mS));
+    }
+    w[f] = std::acos((std::max)(-1.0, (std::min)(1.0, worst))) * rad_to_deg;
+  }
+  return w;
+}
 
 /*!
  * \ingroup PkgHexMeshing3Quality
@@ -224,7 +287,188 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
     ar = (std::max)(ar, (s[0] + s[1] + s[2]) / 6.0 / std::pow(v, 2.0 / 3.0));
     q.aspect_ratio[c] = ar;
   }
+  q.face_warpage = face_warpage(mesh.points, pm, g);
   return q;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief a histogram of `counts.size()` equal bins over [`lo`, `hi`]; bin i covers
+ * [lo + i w, lo + (i+1) w) with w = (hi - lo) / counts.size(), the last bin includes `hi`, and the
+ * values outside the range are counted in the end bins.
+ */
+struct Histogram
+{
+  double lo = 0, hi = 1;
+  std::vector<std::size_t> counts;
+
+  /// number of values counted (NaN excluded)
+  std::size_t total() const { std::size_t t = 0; for(std::size_t c : counts) t += c; return t; }
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the histogram of `values` with `bins` equal bins over [`lo`, `hi`] (`hi` > `lo` expected;
+ * otherwise every value goes to the first bin): values below `lo` are counted in the first bin,
+ * values above `hi` (and +infinity) in the last one; NaN values are ignored. One linear pass.
+ */
+inline Histogram histogram(const std::vector<double>& values, double lo, double hi, std::size_t bins)
+{
+  Histogram h;
+  h.lo = lo; h.hi = hi;
+  h.counts.assign(bins, 0);
+  if(bins == 0) return h;
+  const bool ok = hi > lo;   // false for NaN bounds too
+  const double scale = ok ? double(bins) / (hi - lo) : 0.0;
+  const double last = double(bins - 1);
+  for(double v : values) {
+    if(std::isnan(v)) continue;
+    if(!ok || !(v > lo)) { ++h.counts[0]; continue; }
+    const double x = (v - lo) * scale;   // > 0, may be +inf
+    h.counts[x >= last ? bins - 1 : std::size_t(x)] += 1;
+  }
+  return h;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the histograms of the measures of `q`, named as the members of `Mesh_quality`, over fixed
+ * ranges so that histograms of different meshes compare bin by bin:
+ * - `scaled_jacobian`: [-1, 1] (its whole range), 20 bins of 0.1;
+ * - `non_orthogonality`: [0, 90] degrees, 18 bins of 5 (OpenFOAM's checkMesh warns above 70);
+ * - `skewness`: [0, max(4, largest value)], 20 bins (checkMesh warns above 4);
+ * - `aspect_ratio`: [1, max(10, largest value)], 18 bins (1 is its least value);
+ * - `face_warpage`: [0, 90] degrees, 18 bins of 5 (angles above 90 fall in the last bin).
+ *
+ * `bins` > 0 replaces these numbers of bins. Empty measures give empty histograms (all counts 0).
+ */
+inline std::vector<std::pair<std::string, Histogram>> quality_histograms(const Mesh_quality& q, std::size_t bins = 0)
+{
+  auto largest = [](const std::vector<double>& v) {
+    double m = -std::numeric_limits<double>::infinity();
+    for(double x : v) if(x > m) m = x;   // NaN never compares greater
+    return m;
+  };
+  auto nb = [bins](std::size_t d) { return bins > 0 ? bins : d; };
+  double sk_hi = (std::max)(4.0, largest(q.skewness));
+  double ar_hi = (std::max)(10.0, largest(q.aspect_ratio));
+  if(!std::isfinite(sk_hi)) sk_hi = 4.0;   // +inf: everything above 4 in the last bin
+  if(!std::isfinite(ar_hi)) ar_hi = 10.0;
+  std::vector<std::pair<std::string, Histogram>> h;
+  h.emplace_back("scaled_jacobian", histogram(q.scaled_jacobian, -1.0, 1.0, nb(20)));
+  h.emplace_back("non_orthogonality", histogram(q.non_orthogonality, 0.0, 90.0, nb(18)));
+  h.emplace_back("skewness", histogram(q.skewness, 0.0, sk_hi, nb(20)));
+  h.emplace_back("aspect_ratio", histogram(q.aspect_ratio, 1.0, ar_hi, nb(18)));
+  h.emplace_back("face_warpage", histogram(q.face_warpage, 0.0, 90.0, nb(18)));
+  return h;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief one of the worst elements of a measure: its index (cell index in `Hex_mesh_3::hexahedra`,
+ * which is also the cell label of the `Polyhedral_mesh_3`, or face index in
+ * `Polyhedral_mesh_3::faces`, which is OpenFOAM's face label), its value and where it is.
+ */
+struct Worst_element
+{
+  std::size_t index = 0;
+  double value = 0;
+  std::array<double, 3> location{{0, 0, 0}};   ///< cell: average of its 8 corners; face: OpenFOAM's face centre
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the worst elements of each measure of a `Mesh_quality`, worst first (see `worst_cells()`).
+ */
+struct Worst_cells
+{
+  std::vector<Worst_element> scaled_jacobian;    ///< cells, smallest values
+  std::vector<Worst_element> aspect_ratio;       ///< cells, largest values
+  std::vector<Worst_element> non_orthogonality;  ///< internal faces, largest values
+  std::vector<Worst_element> skewness;           ///< faces, largest values
+  std::vector<Worst_element> face_warpage;       ///< faces, largest values
+};
+
+namespace internal {
+/// the indices of the (at most) k worst values, worst first: the smallest ones if `!largest`, the
+/// largest ones otherwise; NaN counts as worse than any number; ties go to the smaller index.
+/// One pass with a heap of k elements: O(n log k) time, O(k) memory.
+inline std::vector<std::size_t> worst_indices(const std::vector<double>& v, std::size_t k, bool largest)
+{
+  struct Item { double value; std::size_t index; };
+  auto worse = [largest](const Item& a, const Item& b) {
+    const bool na = std::isnan(a.value), nb = std::isnan(b.value);
+    if(na != nb) return na;
+    if(!na && a.value != b.value) return largest ? a.value > b.value : a.value < b.value;
+    return a.index < b.index;
+  };
+  std::vector<Item> heap;   // the best of the kept items on top (worse is the heap's "less")
+  k = (std::min)(k, v.size());
+  if(k == 0) return {};
+  heap.reserve(k);
+  for(std::size_t i = 0; i < v.size(); ++i) {
+    const Item it{v[i], i};
+    if(heap.size() < k) { heap.push_back(it); std::push_heap(heap.begin(), heap.end(), worse); }
+    else if(worse(it, heap.front())) {
+      std::pop_heap(heap.begin(), heap.end(), worse);
+      heap.back() = it;
+      std::push_heap(heap.begin(), heap.end(), worse);
+    }
+  }
+  std::sort(heap.begin(), heap.end(), worse);
+  std::vector<std::size_t> r;
+  r.reserve(heap.size());
+  for(const Item& it : heap) r.push_back(it.index);
+  return r;
+}
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the `k` worst cells and faces of `q` (computed by `compute_quality(mesh, pm)`), worst first:
+ * the cells with the smallest scaled Jacobian and the largest aspect ratio, the faces with the
+ * largest non-orthogonality, skewness and warpage. Deterministic: ties go to the smaller index, and
+ * NaN values count as the worst. A cell is located by the average of its 8 corners, a face by
+ * OpenFOAM's face centre. One linear pass per measure, O(k) memory.
+ */
+template <typename HexMesh>
+Worst_cells worst_cells(const HexMesh& mesh, const Polyhedral_mesh_3& pm, const Mesh_quality& q, std::size_t k = 10)
+{
+  using namespace internal;
+  auto cells = [&](const std::vector<double>& v, bool largest) {
+    std::vector<Worst_element> r;
+    for(std::size_t c : worst_indices(v, k, largest)) {
+      Worst_element e;
+      e.index = c; e.value = v[c];
+      if(c < mesh.hexahedra.size()) {
+        Vec3 s{{0, 0, 0}};
+        for(int i = 0; i < 8; ++i) s = add(s, vec(mesh.points[mesh.hexahedra[c][i]]));
+        e.location = mul(s, 1.0 / 8.0);
+      }
+      r.push_back(e);
+    }
+    return r;
+  };
+  auto faces = [&](const std::vector<double>& v) {
+    std::vector<Worst_element> r;
+    for(std::size_t f : worst_indices(v, k, true)) {
+      Worst_element e;
+      e.index = f; e.value = v[f];
+      if(f < pm.faces.size()) {
+        Vec3 area;
+        OpenFOAM_geometry::face_centre_and_area(mesh.points, pm.faces[f], e.location, area);
+      }
+      r.push_back(e);
+    }
+    return r;
+  };
+  Worst_cells w;
+  w.scaled_jacobian = cells(q.scaled_jacobian, false);
+  w.aspect_ratio = cells(q.aspect_ratio, true);
+  w.non_orthogonality = faces(q.non_orthogonality);
+  w.skewness = faces(q.skewness);
+  w.face_warpage = faces(q.face_warpage);
+  return w;
 }
 
 } // namespace Hex_meshing_3

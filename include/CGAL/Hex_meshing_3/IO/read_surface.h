@@ -4,13 +4,32 @@
 #ifndef CGAL_HEX_MESHING_3_IO_READ_SURFACE_H
 #define CGAL_HEX_MESHING_3_IO_READ_SURFACE_H
 
-#include <CGAL/Hex_meshing_3/Status.h>
-#include <CGAL/IO/polygon_soup_io.h>
+// Surface readers, all our own: CGAL's OBJ and STL readers drop the OBJ groups and the STL solid
+// names, which are the patch names users want to see in their solver, and CGAL 5.5's OFF and PLY
+// readers overflow buffers on malformed input (found by our fuzz targets within seconds). Every format may be gzip-compressed (recognised by its magic bytes, so
+// `part.stl.gz` and a compressed file named `part.stl` both work). All readers work on a buffer
+// held in memory, so that the fuzz targets (test/Hex_meshing_3/fuzz) exercise exactly this code.
+//
+// Errors are `Input_error`s with a one-line message "<file>: <cause>"; a reader never crashes on
+// malformed input (this is what the fuzz targets check).
 
+#include <CGAL/Hex_meshing_3/Status.h>
+
+#include <boost/iostreams/copy.hpp>
+#include <boost/iostreams/device/array.hpp>
+#include <boost/iostreams/device/back_inserter.hpp>
+#include <boost/iostreams/filter/gzip.hpp>
+#include <boost/iostreams/filtering_stream.hpp>
+
+#include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,60 +39,666 @@ namespace IO {
 
 /*!
  * \ingroup PkgHexMeshing3IO
- * \brief reads a triangulated surface (OFF, OBJ, STL ASCII or binary, PLY, by the file's extension)
- * as a triangle soup: polygons with more than three corners are split into fans.
+ * \brief a triangle soup with named parts, as read from one or several files.
  *
- * \throws Input_error with a one-line message naming the file and the cause when the file cannot
- * be opened, has an unknown extension, cannot be parsed, has no triangle, or has a coordinate
- * that is not finite.
+ * `part_of_triangle[i]` indexes `part_names`. Parts are the OBJ groups (`g`) and objects (`o`),
+ * the STL solids, or, when a file has neither, the file itself (named after its base name). Parts
+ * of the same name, from one file or several, are one part.
  */
 template <typename Point_3>
-void read_surface(const std::string& filename,
-                  std::vector<Point_3>& points,
-                  std::vector<std::array<std::uint32_t, 3>>& triangles)
+struct Surface_soup
 {
-  const std::string::size_type dot = filename.find_last_of('.');
-  std::string ext = dot == std::string::npos ? std::string() : filename.substr(dot + 1);
-  for(char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if(ext != "off" && ext != "obj" && ext != "stl" && ext != "ply")
-    throw Input_error(filename + ": unknown surface format '" + ext + "' (expected .off, .obj, .stl or .ply)");
+  std::vector<Point_3> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<int> part_of_triangle;
+  std::vector<std::string> part_names;
+  std::vector<std::string> files;       ///< the files read, in order
+  std::size_t polygons = 0;             ///< polygons read (before splitting into triangles)
+  std::vector<std::string> warnings;    ///< one line each, naming the file
 
+  /// index of the part named `name`, created if needed
+  int part(const std::string& name)
   {
-    std::ifstream probe(filename, std::ios::binary);
-    if(!probe)
-      throw Input_error(filename + ": cannot open the file for reading");
-    probe.seekg(0, std::ios::end);
-    if(probe.tellg() <= 0)
-      throw Input_error(filename + ": the file is empty");
+    for(std::size_t i = 0; i < part_names.size(); ++i)
+      if(part_names[i] == name) return int(i);
+    part_names.push_back(name);
+    return int(part_names.size() - 1);
   }
-  std::vector<Point_3> pts;
-  std::vector<std::vector<std::size_t>> polygons;
-  bool ok = false;
+};
+
+namespace internal {
+
+inline std::string lower(std::string s)
+{
+  for(char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// base name without directories and without every extension ("a/b/bike.obj.gz" -> "bike")
+inline std::string stem_of(const std::string& filename)
+{
+  std::string base = filename.substr(filename.find_last_of("/\\") + 1);
+  base = base.substr(0, base.find('.'));
+  return base.empty() ? std::string("surface") : base;
+}
+
+/// the format named by the extension, ignoring a trailing ".gz"
+inline std::string format_of(const std::string& filename)
+{
+  std::string f = lower(filename.substr(filename.find_last_of("/\\") + 1));
+  if(f.size() > 3 && f.compare(f.size() - 3, 3, ".gz") == 0) f.resize(f.size() - 3);
+  const std::string::size_type dot = f.find_last_of('.');
+  return dot == std::string::npos ? std::string() : f.substr(dot + 1);
+}
+
+inline bool is_gzip(const std::string& data)
+{
+  return data.size() >= 2 && static_cast<unsigned char>(data[0]) == 0x1f &&
+         static_cast<unsigned char>(data[1]) == 0x8b;
+}
+
+inline std::string gunzip(const std::string& data, const std::string& name)
+{
+  std::string out;
   try {
-    ok = CGAL::IO::read_polygon_soup(filename, pts, polygons);
+    namespace bio = boost::iostreams;
+    bio::filtering_istream in;
+    in.push(bio::gzip_decompressor());
+    in.push(bio::array_source(data.data(), data.size()));
+    bio::copy(in, bio::back_inserter(out));
   } catch(const std::exception& e) {
-    throw Input_error(filename + ": cannot parse the file as " + ext + " (" + e.what() + ")");
+    throw Input_error(name + ": the gzip stream is corrupt or truncated (" + e.what() + ")");
   }
-  if(!ok)
-    throw Input_error(filename + ": cannot parse the file as " + ext);
-  for(const Point_3& p : pts)
+  return out;
+}
+
+/// a cursor over a text buffer, reading whitespace-separated tokens line by line
+struct Text_cursor
+{
+  const char* p;
+  const char* end;
+  std::size_t line = 1;
+
+  static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+  void skip_blanks() { while(p < end && blank(*p)) ++p; }
+  bool at_eol() { skip_blanks(); return p >= end || *p == '\n'; }
+  void next_line()
+  {
+    while(p < end && *p != '\n') ++p;
+    if(p < end) { ++p; ++line; }
+  }
+  /// next token on the current line (empty at the end of the line)
+  std::string_view token()
+  {
+    skip_blanks();
+    const char* b = p;
+    while(p < end && !blank(*p) && *p != '\n') ++p;
+    return std::string_view(b, std::size_t(p - b));
+  }
+  /// skips whitespace including line ends; returns the next token (empty at the end of the buffer)
+  std::string_view any_token()
+  {
+    while(p < end && (blank(*p) || *p == '\n')) { if(*p == '\n') ++line; ++p; }
+    return token();
+  }
+  /// the rest of the line, trimmed
+  std::string rest_of_line()
+  {
+    skip_blanks();
+    const char* b = p;
+    while(p < end && *p != '\n') ++p;
+    const char* e = p;
+    while(e > b && blank(e[-1])) --e;
+    return std::string(b, std::size_t(e - b));
+  }
+};
+
+inline bool parse_double(std::string_view s, double& v)
+{
+  if(s.empty()) return false;
+  if(s[0] == '+') s.remove_prefix(1);
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+template <typename Point_3>
+void check_finite(const std::vector<Point_3>& pts, std::size_t from, const std::string& name)
+{
+  for(std::size_t i = from; i < pts.size(); ++i) {
+    const Point_3& p = pts[i];
     if(!std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
        !std::isfinite(CGAL::to_double(p.z())))
-      throw Input_error(filename + ": a vertex has a coordinate that is not a finite number");
-
-  points = std::move(pts);
-  triangles.clear();
-  triangles.reserve(polygons.size());
-  for(const auto& poly : polygons) {
-    for(std::size_t id : poly)
-      if(id >= points.size())
-        throw Input_error(filename + ": a face refers to vertex " + std::to_string(id) +
-                          " but the file has " + std::to_string(points.size()) + " vertices");
-    for(std::size_t i = 2; i < poly.size(); ++i)
-      triangles.push_back({{std::uint32_t(poly[0]), std::uint32_t(poly[i - 1]), std::uint32_t(poly[i])}});
+      throw Input_error(name + ": vertex " + std::to_string(i - from + 1) +
+                        " has a coordinate that is not a finite number");
   }
-  if(triangles.empty())
-    throw Input_error(filename + ": the surface has no triangle");
+}
+
+/// appends polygon `poly` (indices into the soup's points) as a fan of triangles of part `part`
+template <typename Soup>
+void add_polygon(Soup& soup, const std::vector<std::size_t>& poly, int part)
+{
+  ++soup.polygons;
+  for(std::size_t i = 2; i < poly.size(); ++i) {
+    soup.triangles.push_back({{std::uint32_t(poly[0]), std::uint32_t(poly[i - 1]), std::uint32_t(poly[i])}});
+    soup.part_of_triangle.push_back(part);
+  }
+}
+
+// ---- OBJ --------------------------------------------------------------------------------------
+
+template <typename Point_3>
+void read_OBJ_buffer(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
+{
+  Text_cursor c{data.data(), data.data() + data.size()};
+  const std::size_t base = soup.points.size();
+  int part = -1;   // created at the first face, so a file without groups is one part named after it
+  std::string pending = stem_of(name);
+  std::size_t ignored = 0;
+  std::vector<std::size_t> poly;
+  std::vector<std::pair<std::size_t, std::size_t>> face_ranges;   // checked once all vertices are known
+  std::vector<std::int64_t> raw;   // raw one-based (resolved) indices of every face corner
+  std::vector<int> face_part;
+  std::vector<std::size_t> face_line;
+  while(c.p < c.end) {
+    const std::string_view kw = c.token();
+    if(kw == "v") {
+      double x[3];
+      for(int k = 0; k < 3; ++k)
+        if(!parse_double(c.token(), x[k]))
+          throw Input_error(name + ": line " + std::to_string(c.line) + ": a vertex needs three numbers" +
+                            (c.p >= c.end ? " (the file ends there: truncated)" : ""));
+      soup.points.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
+    } else if(kw == "f") {
+      const std::size_t first = raw.size();
+      for(std::string_view t = c.token(); !t.empty(); t = c.token()) {
+        const std::string_view idx = t.substr(0, t.find('/'));
+        long long i = 0;
+        const auto r = std::from_chars(idx.data(), idx.data() + idx.size(), i);
+        if(r.ec != std::errc() || r.ptr != idx.data() + idx.size() || i == 0)
+          throw Input_error(name + ": line " + std::to_string(c.line) + ": '" + std::string(t) +
+                            "' is not a vertex index");
+        const long long nv = (long long)(soup.points.size() - base);
+        if(i < 0) {   // relative to the vertices read so far
+          if(-i > nv)
+            throw Input_error(name + ": line " + std::to_string(c.line) + ": relative index " +
+                              std::to_string(i) + " but only " + std::to_string(nv) + " vertices so far");
+          i = nv + 1 + i;
+        }
+        raw.push_back(i);
+      }
+      if(raw.size() - first < 3)
+        throw Input_error(name + ": line " + std::to_string(c.line) + ": a face needs at least three vertices");
+      if(part < 0) part = soup.part(pending);
+      face_ranges.push_back({first, raw.size()});
+      face_part.push_back(part);
+      face_line.push_back(c.line);
+    } else if(kw == "g" || kw == "o") {
+      std::string n = c.rest_of_line();
+      if(n.empty()) n = kw == "g" ? "default" : stem_of(name);
+      pending = n;
+      part = -1;
+    } else if(!kw.empty() && kw[0] != '#') {
+      ++ignored;   // vt, vn, usemtl, mtllib, s, l, p, ...: not needed for a surface
+    }
+    c.next_line();
+  }
+  const std::size_t nv = soup.points.size() - base;
+  check_finite(soup.points, base, name);
+  for(std::size_t f = 0; f < face_ranges.size(); ++f) {
+    poly.clear();
+    for(std::size_t k = face_ranges[f].first; k < face_ranges[f].second; ++k) {
+      if(raw[k] > (long long)nv)
+        throw Input_error(name + ": line " + std::to_string(face_line[f]) + ": a face refers to vertex " +
+                          std::to_string(raw[k]) + " but the file has " + std::to_string(nv) + " vertices");
+      poly.push_back(base + std::size_t(raw[k] - 1));
+    }
+    add_polygon(soup, poly, face_part[f]);
+  }
+  if(face_ranges.empty())
+    throw Input_error(name + ": no face (is this an OBJ file?)");
+  (void)ignored;
+}
+
+// ---- STL --------------------------------------------------------------------------------------
+
+template <typename Point_3>
+void read_STL_binary(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
+{
+  if(data.size() < 84)
+    throw Input_error(name + ": too short for a binary STL (" + std::to_string(data.size()) +
+                      " bytes) and not an ASCII STL");
+  std::uint32_t n = 0;
+  std::memcpy(&n, data.data() + 80, 4);   // little-endian on every platform we build for
+  const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
+  if(expected != data.size())
+    throw Input_error(name + ": binary STL declares " + std::to_string(n) + " triangles (" +
+                      std::to_string(expected) + " bytes) but has " + std::to_string(data.size()) +
+                      " bytes (truncated or not an STL file)");
+  if(n == 0) throw Input_error(name + ": the STL file has no triangle");
+  const std::size_t base = soup.points.size();
+  const int part = soup.part(stem_of(name));
+  soup.points.reserve(base + 3 * std::size_t(n));
+  std::vector<std::size_t> poly(3);
+  for(std::uint32_t t = 0; t < n; ++t) {
+    const char* f = data.data() + 84 + 50 * std::size_t(t) + 12;   // skip the normal
+    for(int k = 0; k < 3; ++k) {
+      float x[3];
+      std::memcpy(x, f + 12 * k, 12);
+      soup.points.push_back(Point_3(double(x[0]) * scale, double(x[1]) * scale, double(x[2]) * scale));
+      poly[std::size_t(k)] = soup.points.size() - 1;
+    }
+    add_polygon(soup, poly, part);
+  }
+  check_finite(soup.points, base, name);
+}
+
+template <typename Point_3>
+void read_STL_ascii(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
+{
+  Text_cursor c{data.data(), data.data() + data.size()};
+  const std::size_t base = soup.points.size();
+  std::size_t solids = 0, facets = 0;
+  auto fail = [&](const std::string& what) {
+    c.skip_blanks();
+    throw Input_error(name + ": line " + std::to_string(c.line) + ": " + what +
+                      (c.p >= c.end ? " (the file ends there: truncated)" : ""));
+  };
+  std::vector<std::size_t> poly;
+  for(std::string_view t = c.any_token(); !t.empty(); t = c.any_token()) {
+    if(t != "solid") fail("expected 'solid', found '" + std::string(t.substr(0, 40)) + "'");
+    std::string sname = c.rest_of_line();
+    if(sname.empty()) sname = stem_of(name);
+    const int part = soup.part(sname);
+    ++solids;
+    bool closed = false;
+    for(t = c.any_token(); !t.empty(); t = c.any_token()) {
+      if(t == "endsolid") { c.rest_of_line(); closed = true; break; }
+      if(t != "facet") fail("expected 'facet' or 'endsolid', found '" + std::string(t.substr(0, 40)) + "'");
+      c.rest_of_line();   // "normal nx ny nz": recomputed from the vertices
+      if(c.any_token() != "outer" || c.token() != "loop") fail("expected 'outer loop'");
+      poly.clear();
+      for(t = c.any_token(); t == "vertex"; t = c.any_token()) {
+        double x[3];
+        for(int k = 0; k < 3; ++k)
+          if(!parse_double(c.token(), x[k])) fail("a vertex needs three numbers");
+        soup.points.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
+        poly.push_back(soup.points.size() - 1);
+      }
+      if(t.empty()) fail("the file ends inside a facet (truncated)");
+      if(t != "endloop") fail("expected 'vertex' or 'endloop', found '" + std::string(t.substr(0, 40)) + "'");
+      if(c.any_token() != "endfacet") fail("expected 'endfacet'");
+      if(poly.size() < 3) fail("a facet needs at least three vertices");
+      add_polygon(soup, poly, part);
+      ++facets;
+    }
+    if(!closed) fail("the file ends inside solid '" + sname + "' (truncated: no 'endsolid')");
+  }
+  if(solids == 0) throw Input_error(name + ": the STL file is empty");
+  if(facets == 0) throw Input_error(name + ": the STL file has no triangle");
+  check_finite(soup.points, base, name);
+}
+
+template <typename Point_3>
+void read_STL_buffer(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
+{
+  // binary when the size matches the triangle count (some binary headers start with "solid")
+  if(data.size() >= 84) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, data.data() + 80, 4);
+    if(84 + 50 * std::uint64_t(n) == data.size()) return read_STL_binary(data, name, scale, soup);
+  }
+  std::size_t i = 0;
+  while(i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
+  if(data.compare(i, 5, "solid") == 0 && data.find('\0') == std::string::npos)
+    return read_STL_ascii(data, name, scale, soup);
+  read_STL_binary(data, name, scale, soup);   // throws with the size mismatch
+}
+
+// ---- OFF ---------------------------------------------------------------------------------------
+// Our own line-based parser: CGAL 5.5's File_scanner_OFF and PLY reader overflow buffers on
+// malformed input (found by the fuzz targets within seconds), and a reader must never crash.
+// Supported: OFF with the optional prefixes ST, C, N (texture, colour, normal values after the
+// coordinates are ignored), counts on the header line or the next one, '#' comments, faces with
+// optional colour values after the indices. Not supported (clear error): 4OFF, nOFF, OFF BINARY.
+
+template <typename Point_3>
+void read_OFF_buffer(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
+{
+  Text_cursor c{data.data(), data.data() + data.size()};
+  auto fail = [&](const std::string& what) {
+    c.skip_blanks();
+    throw Input_error(name + ": line " + std::to_string(c.line) + ": " + what +
+                      (c.p >= c.end ? " (the file ends there: truncated)" : ""));
+  };
+  // the next token of the data section, skipping comments and line ends
+  auto next_line_start = [&]() {
+    for(;;) {
+      c.skip_blanks();
+      if(c.p >= c.end) return false;
+      if(*c.p == '\n') { c.next_line(); continue; }
+      if(*c.p == '#') { c.next_line(); continue; }
+      return true;
+    }
+  };
+  if(!next_line_start()) throw Input_error(name + ": the file is empty");
+  std::string_view kw = c.token();
+  const std::size_t off = kw.find("OFF");
+  if(off == std::string_view::npos || off + 3 != kw.size())
+    throw Input_error(name + ": not an OFF file (no 'OFF' header)");
+  const std::string_view prefix = kw.substr(0, off);
+  if(prefix.find('4') != std::string_view::npos || prefix.find('n') != std::string_view::npos)
+    throw Input_error(name + ": OFF variant '" + std::string(kw) + "' is not supported (3-D OFF only)");
+  for(char ch : prefix)
+    if(ch != 'S' && ch != 'T' && ch != 'C' && ch != 'N')
+      throw Input_error(name + ": not an OFF file (header '" + std::string(kw.substr(0, 40)) + "')");
+  long long counts[3];
+  int got = 0;
+  for(std::string_view t = c.token(); !t.empty() && got < 3; t = c.token()) {
+    if(t == "BINARY") throw Input_error(name + ": binary OFF is not supported (convert it to ASCII OFF)");
+    if(t[0] == '#') { c.next_line(); break; }
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), counts[got]);
+    if(r.ec != std::errc() || r.ptr != t.data() + t.size()) fail("bad OFF header: '" + std::string(t.substr(0, 40)) + "' is not a count");
+    ++got;
+  }
+  while(got < 3) {
+    if(got == 0 || c.at_eol()) { if(!next_line_start()) fail("truncated OFF header"); }
+    std::string_view t = c.token();
+    if(t == "BINARY") throw Input_error(name + ": binary OFF is not supported (convert it to ASCII OFF)");
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), counts[got]);
+    if(r.ec != std::errc() || r.ptr != t.data() + t.size()) fail("bad OFF header: '" + std::string(t.substr(0, 40)) + "' is not a count");
+    ++got;
+  }
+  if(counts[0] < 0 || counts[1] < 0 || counts[2] < 0) fail("negative count in the OFF header");
+  // every vertex takes at least 6 bytes ("0 0 0\n"), every face at least 8 ("3 0 1 2\n")
+  if(counts[0] > (long long)(data.size() / 6) || counts[1] > (long long)(data.size() / 8))
+    throw Input_error(name + ": the OFF header announces " + std::to_string(counts[0]) + " vertices and " +
+                      std::to_string(counts[1]) + " faces, more than the file can hold (truncated)");
+  if(counts[0] == 0) throw Input_error(name + ": the surface has no vertex");
+  if(counts[1] == 0) throw Input_error(name + ": the surface has no face");
+  c.next_line();
+  const std::size_t base = soup.points.size(), nv = std::size_t(counts[0]);
+  soup.points.reserve(base + nv);
+  for(std::size_t i = 0; i < nv; ++i) {
+    if(!next_line_start()) throw Input_error(name + ": the file ends after " + std::to_string(i) + " of " +
+                                             std::to_string(nv) + " vertices (truncated)");
+    double x[3];
+    for(int k = 0; k < 3; ++k)
+      if(!parse_double(c.token(), x[k])) fail("a vertex needs three numbers");
+    soup.points.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
+    c.next_line();
+  }
+  check_finite(soup.points, base, name);
+  const int part = soup.part(stem_of(name));
+  std::vector<std::size_t> poly;
+  for(long long f = 0; f < counts[1]; ++f) {
+    if(!next_line_start()) throw Input_error(name + ": the file ends after " + std::to_string(f) + " of " +
+                                             std::to_string(counts[1]) + " faces (truncated)");
+    long long n = 0;
+    const std::string_view t = c.token();
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), n);
+    if(r.ec != std::errc() || r.ptr != t.data() + t.size()) fail("'" + std::string(t.substr(0, 40)) + "' is not a vertex count");
+    if(n < 3) fail("a face needs at least three vertices");
+    if(n > (long long)nv) fail("a face has more corners than the file has vertices");
+    poly.clear();
+    for(long long k = 0; k < n; ++k) {
+      const std::string_view ti = c.token();
+      long long id = 0;
+      const auto ri = std::from_chars(ti.data(), ti.data() + ti.size(), id);
+      if(ti.empty()) fail("a face has fewer indices than it announces");
+      if(ri.ec != std::errc() || ri.ptr != ti.data() + ti.size()) fail("'" + std::string(ti.substr(0, 40)) + "' is not a vertex index");
+      if(id < 0 || id >= (long long)nv)
+        fail("a face refers to vertex " + std::to_string(id) + " but the file has " + std::to_string(nv) + " vertices");
+      poly.push_back(base + std::size_t(id));
+    }
+    add_polygon(soup, poly, part);
+    c.next_line();   // colour values, if any
+  }
+}
+
+// ---- PLY ---------------------------------------------------------------------------------------
+// Our own parser (see above): ASCII, binary little- and big-endian; the vertex element's x, y, z
+// (any numeric type) and the face element's vertex_indices / vertex_index list; other elements
+// and properties are skipped.
+
+struct Ply_property
+{
+  std::string name;
+  int type = 0;          // size in bytes of the value (1, 2, 4, 8); negative: float (-4) or double (-8)
+  bool is_signed = false;
+  bool is_list = false;
+  int count_type = 0;    // for lists
+  bool count_signed = false;
+};
+struct Ply_element
+{
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<Ply_property> properties;
+};
+
+inline bool ply_type(std::string_view t, int& size, bool& is_signed)
+{
+  struct T { const char* n; int s; bool sg; };
+  static const T types[] = {{"char", 1, true}, {"int8", 1, true}, {"uchar", 1, false}, {"uint8", 1, false},
+                            {"short", 2, true}, {"int16", 2, true}, {"ushort", 2, false}, {"uint16", 2, false},
+                            {"int", 4, true}, {"int32", 4, true}, {"uint", 4, false}, {"uint32", 4, false},
+                            {"float", -4, true}, {"float32", -4, true}, {"double", -8, true}, {"float64", -8, true}};
+  for(const T& x : types)
+    if(t == x.n) { size = x.s; is_signed = x.sg; return true; }
+  return false;
+}
+
+template <typename Point_3>
+void read_PLY_buffer(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
+{
+  Text_cursor c{data.data(), data.data() + data.size()};
+  auto fail = [&](const std::string& what) { throw Input_error(name + ": " + what); };
+  if(c.token() != "ply") fail("not a PLY file (no 'ply' header)");
+  c.next_line();
+  int format = -1;   // 0 ascii, 1 little endian, 2 big endian
+  std::vector<Ply_element> elements;
+  for(;;) {
+    if(c.p >= c.end) fail("truncated PLY header (no 'end_header')");
+    const std::string_view kw = c.token();
+    if(kw == "end_header") { c.next_line(); break; }
+    if(kw == "format") {
+      const std::string_view f = c.token();
+      if(f == "ascii") format = 0;
+      else if(f == "binary_little_endian") format = 1;
+      else if(f == "binary_big_endian") format = 2;
+      else fail("unknown PLY format '" + std::string(f.substr(0, 40)) + "'");
+    } else if(kw == "element") {
+      Ply_element e;
+      e.name = std::string(c.token());
+      const std::string_view n = c.token();
+      const auto r = std::from_chars(n.data(), n.data() + n.size(), e.count);
+      if(e.name.empty() || r.ec != std::errc() || r.ptr != n.data() + n.size())
+        fail("line " + std::to_string(c.line) + ": bad element declaration");
+      elements.push_back(e);
+    } else if(kw == "property") {
+      if(elements.empty()) fail("line " + std::to_string(c.line) + ": a property before any element");
+      Ply_property p;
+      std::string_view t = c.token();
+      if(t == "list") {
+        p.is_list = true;
+        if(!ply_type(c.token(), p.count_type, p.count_signed) || p.count_type < 0)
+          fail("line " + std::to_string(c.line) + ": bad list count type");
+        t = c.token();
+      }
+      if(!ply_type(t, p.type, p.is_signed)) fail("line " + std::to_string(c.line) + ": unknown property type '" + std::string(t.substr(0, 40)) + "'");
+      p.name = std::string(c.token());
+      elements.back().properties.push_back(p);
+    } else if(kw != "comment" && kw != "obj_info" && !kw.empty()) {
+      fail("line " + std::to_string(c.line) + ": unknown header keyword '" + std::string(kw.substr(0, 40)) + "'");
+    }
+    c.next_line();
+  }
+  if(format < 0) fail("the PLY header has no 'format' line");
+
+  const char* bp = c.p;   // binary cursor
+  auto read_value = [&](int type, bool is_signed, double& v) -> bool {
+    if(format == 0) {
+      const std::string_view t = c.any_token();
+      if(t.empty()) return false;
+      if(!parse_double(t, v)) fail("line " + std::to_string(c.line) + ": '" + std::string(t.substr(0, 40)) + "' is not a number");
+      return true;
+    }
+    const int n = type < 0 ? -type : type;
+    if(c.end - bp < n) return false;
+    unsigned char b[8];
+    std::memcpy(b, bp, std::size_t(n));
+    bp += n;
+    if(format == 2) std::reverse(b, b + n);
+    if(type == -4) { float f; std::memcpy(&f, b, 4); v = f; }
+    else if(type == -8) { std::memcpy(&v, b, 8); }
+    else {
+      std::uint64_t u = 0;
+      for(int i = n - 1; i >= 0; --i) u = (u << 8) | b[i];
+      if(is_signed && n < 8 && (u >> (8 * n - 1))) u |= ~std::uint64_t(0) << (8 * n);
+      v = is_signed ? double(std::int64_t(u)) : double(u);
+    }
+    return true;
+  };
+  const std::size_t base = soup.points.size();
+  std::size_t nv = 0;
+  bool has_faces = false;
+  const int part = soup.part(stem_of(name));
+  std::vector<std::size_t> poly;
+  std::vector<std::pair<std::vector<std::size_t>, std::size_t>> faces;   // checked once all vertices are known
+  for(const Ply_element& e : elements) {
+    const std::size_t remaining = std::size_t(c.end - (format == 0 ? c.p : bp));
+    if(e.count > remaining)   // every record takes at least one byte
+      fail("element '" + e.name + "' announces " + std::to_string(e.count) + " records, more than the file holds (truncated)");
+    int ix = -1, iy = -1, iz = -1, iface = -1;
+    for(std::size_t k = 0; k < e.properties.size(); ++k) {
+      const auto& p = e.properties[k];
+      if(e.name == "vertex" && !p.is_list) {
+        if(p.name == "x") ix = int(k); else if(p.name == "y") iy = int(k); else if(p.name == "z") iz = int(k);
+      }
+      if(e.name == "face" && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) iface = int(k);
+    }
+    const bool is_vertex = e.name == "vertex";
+    if(is_vertex && (ix < 0 || iy < 0 || iz < 0)) fail("the vertex element lacks an x, y or z property");
+    if(is_vertex) { nv = std::size_t(e.count); soup.points.reserve(base + nv); }
+    if(e.name == "face") has_faces = true;
+    for(std::uint64_t r = 0; r < e.count; ++r) {
+      double xyz[3] = {0, 0, 0};
+      for(std::size_t k = 0; k < e.properties.size(); ++k) {
+        const Ply_property& p = e.properties[k];
+        double v = 0;
+        if(!p.is_list) {
+          if(!read_value(p.type, p.is_signed, v)) fail("the file ends inside element '" + e.name + "' (truncated)");
+          if(int(k) == ix) xyz[0] = v; else if(int(k) == iy) xyz[1] = v; else if(int(k) == iz) xyz[2] = v;
+          continue;
+        }
+        double nd = 0;
+        if(!read_value(p.count_type, p.count_signed, nd)) fail("the file ends inside element '" + e.name + "' (truncated)");
+        if(!(nd >= 0) || nd != std::floor(nd) || nd > double(data.size())) fail("bad list length in element '" + e.name + "'");
+        const std::size_t n = std::size_t(nd);
+        if(int(k) == iface) poly.clear();
+        for(std::size_t i = 0; i < n; ++i) {
+          if(!read_value(p.type, p.is_signed, v)) fail("the file ends inside element '" + e.name + "' (truncated)");
+          if(int(k) == iface) {
+            if(!(v >= 0) || v != std::floor(v) || v >= 4294967295.0) fail("a face has a bad vertex index");
+            poly.push_back(std::size_t(v));
+          }
+        }
+        if(int(k) == iface) {
+          if(poly.size() < 3) fail("a face needs at least three vertices");
+          faces.push_back({poly, r});
+        }
+      }
+      if(is_vertex) soup.points.push_back(Point_3(xyz[0] * scale, xyz[1] * scale, xyz[2] * scale));
+    }
+  }
+  if(nv == 0) fail("the surface has no vertex");
+  if(!has_faces || faces.empty()) fail("the surface has no face");
+  check_finite(soup.points, base, name);
+  for(auto& f : faces) {
+    for(std::size_t& id : f.first) {
+      if(id >= nv)
+        fail("face " + std::to_string(f.second) + " refers to vertex " + std::to_string(id) + " but the file has " +
+             std::to_string(nv) + " vertices");
+      id += base;
+    }
+    add_polygon(soup, f.first, part);
+  }
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3IO
+ * \brief parses a surface held in memory and appends it to `soup`.
+ *
+ * `format` is `"obj"`, `"stl"`, `"off"` or `"ply"`; `data` may be gzip-compressed; `name` is used
+ * in messages and names the part of a file without groups or solid names. Coordinates are
+ * multiplied by `scale`.
+ * \throws Input_error with a one-line message "name: cause"
+ */
+template <typename Point_3>
+void read_surface_buffer(const std::string& data, const std::string& name, const std::string& format,
+                         Surface_soup<Point_3>& soup, double scale = 1.0)
+{
+  if(!(std::isfinite(scale) && scale > 0))
+    throw Input_error(name + ": the scale factor must be a positive number");
+  if(data.empty()) throw Input_error(name + ": the file is empty");
+  if(internal::is_gzip(data))
+    return read_surface_buffer(internal::gunzip(data, name), name, format, soup, scale);
+  // a failed read leaves `soup` as it was
+  const std::size_t np = soup.points.size(), nt = soup.triangles.size(), nn = soup.part_names.size(),
+                    npoly = soup.polygons;
+  try {
+    if(format == "obj") internal::read_OBJ_buffer(data, name, scale, soup);
+    else if(format == "stl") internal::read_STL_buffer(data, name, scale, soup);
+    else if(format == "off") internal::read_OFF_buffer(data, name, scale, soup);
+    else if(format == "ply") internal::read_PLY_buffer(data, name, scale, soup);
+    else throw Input_error(name + ": unknown surface format '" + format + "' (expected .off, .obj, .stl or .ply, "
+                           "optionally gzip-compressed)");
+  } catch(...) {
+    soup.points.resize(np); soup.triangles.resize(nt); soup.part_of_triangle.resize(nt);
+    soup.part_names.resize(nn); soup.polygons = npoly;
+    throw;
+  }
+  if(soup.points.size() > std::size_t(UINT32_MAX))
+    throw Input_error(name + ": more than 2^32 points are not supported");
+  soup.files.push_back(name);
+}
+
+/*!
+ * \ingroup PkgHexMeshing3IO
+ * \brief reads a triangulated surface file (OFF, OBJ, STL ASCII or binary, PLY, by the file's
+ * extension; each optionally gzip-compressed, e.g. `bike.obj.gz`) and appends it to `soup`.
+ * Polygons with more than three corners are split into fans. OBJ groups and objects and STL solid
+ * names become part names; other files are one part named after the file's base name.
+ * \throws Input_error with a one-line message naming the file and the cause
+ */
+template <typename Point_3>
+void read_surface(const std::string& filename, Surface_soup<Point_3>& soup, double scale = 1.0)
+{
+  const std::string format = internal::format_of(filename);
+  if(format != "off" && format != "obj" && format != "stl" && format != "ply")
+    throw Input_error(filename + ": unknown surface format '" + format + "' (expected .off, .obj, .stl or .ply, "
+                      "optionally followed by .gz)");
+  std::ifstream in(filename, std::ios::binary);
+  if(!in) throw Input_error(filename + ": cannot open the file for reading");
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if(in.bad()) throw Input_error(filename + ": read error");
+  read_surface_buffer(data, filename, format, soup, scale);
+}
+
+/*!
+ * \ingroup PkgHexMeshing3IO
+ * \brief reads a surface file as a plain triangle soup (parts ignored); see the other overload.
+ */
+template <typename Point_3>
+void read_surface(const std::string& filename, std::vector<Point_3>& points,
+                  std::vector<std::array<std::uint32_t, 3>>& triangles)
+{
+  Surface_soup<Point_3> soup;
+  read_surface(filename, soup);
+  points = std::move(soup.points);
+  triangles = std::move(soup.triangles);
 }
 
 } // namespace IO

@@ -6,7 +6,7 @@
 
 // OpenFOAM polyMesh (ASCII, points with 17 significant digits) in <case>/constant/polyMesh, and a
 // minimal <case>/system/{controlDict,fvSchemes,fvSolution} when there are none, so that checkMesh and the solvers can run.
-// Box patches are of type `patch`, surface parts of type `wall`.
+// Patch types come from the mesh (box faces `patch`, surface parts `wall` unless changed).
 
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 
@@ -44,8 +44,8 @@ inline std::string foam_word(const std::string& s)
  * \ingroup PkgHexMeshing3IO
  * \brief writes `mesh` (with its polyhedral form `pm`) as an OpenFOAM case in directory
  * `case_dir`: `constant/polyMesh/{points,faces,owner,neighbour,boundary}`, and
- * `system/controlDict`, `system/fvSchemes`, `system/fvSolution` only if absent. Patches 0..5 (the box faces) get type `patch`, the others
- * type `wall`.
+ * `system/controlDict`, `system/fvSchemes`, `system/fvSolution` only if absent. Patch types are `mesh.patch_type(p)` (by default `patch` for
+ * the box faces, `wall` for the surface parts).
  * \return `false` if a file cannot be written
  */
 template <typename HexMesh>
@@ -104,9 +104,10 @@ bool write_OpenFOAM(const std::string& case_dir, const HexMesh& mesh, const Poly
     internal::foam_header(os, "polyBoundaryMesh", loc, "boundary");
     os << pm.patches.size() << "\n(\n";
     for(std::size_t p = 0; p < pm.patches.size(); ++p) {
+      const std::string type = internal::foam_word(mesh.patch_type(p));
       os << "    " << internal::foam_word(pm.patches[p].name) << "\n    {\n"
-         << "        type            " << (p < 6 ? "patch" : "wall") << ";\n"
-         << (p < 6 ? "" : "        inGroups        List<word> 1(wall);\n")
+         << "        type            " << type << ";\n"
+         << (type == "patch" ? std::string() : "        inGroups        List<word> 1(" + type + ");\n")
          << "        nFaces          " << pm.patches[p].size << ";\n"
          << "        startFace       " << pm.patches[p].start << ";\n    }\n";
     }

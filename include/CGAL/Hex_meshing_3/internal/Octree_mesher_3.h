@@ -112,7 +112,7 @@ public:
     std::uint8_t flags = 0;
     bool is_leaf() const { return child == 0; }
   };
-  enum Flags : std::uint8_t { CUT = 1, KEPT = 2 };
+  enum Flags : std::uint8_t { CUT = 1, KEPT = 2, LEAK = 4 };
 
   /// statistics of the last run
   struct Statistics
@@ -127,6 +127,8 @@ public:
   {}
 
   const Statistics& statistics() const { return m_stats; }
+  /// leaks of the seeded region found by the last run, largest first
+  const std::vector<Region_leak>& leaks() const { return m_leaks; }
 
   template <typename Visitor, typename HexMesh>
   Status run(HexMesh& out, std::size_t max_cells, const std::optional<Point_3>& seed, Visitor& visitor)
@@ -486,6 +488,8 @@ public:
       const int comp = m_component[s];
       for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
         if(m_nodes[id].is_leaf() && m_component[id] == comp) m_nodes[id].flags |= KEPT;
+      // open or inconsistent surfaces: the flood may have leaked through a hole into a body
+      if(!m_domain.has_exact_inside_test()) find_leaks();
     } else if(m_domain.has_exact_inside_test()) {
       // closed input: a component of uncut cells lies on one side, one exact test decides it
       std::vector<char> inside(first_of_component.size());
@@ -501,6 +505,66 @@ public:
     }
     trim();
     for(const Node& nd : m_nodes) if(nd.is_leaf() && (nd.flags & KEPT)) ++m_stats.kept_cells;
+  }
+
+  // Leaks: the kept cells (the flood fill from the seed) that the winding number puts inside a body
+  // are removed; connected groups of them are reported, with the faces across which the flood
+  // entered them (the hole).
+  void find_leaks()
+  {
+    m_leaks.clear();
+    std::vector<std::uint32_t> leak_cells;
+    std::vector<double> wn(m_nodes.size(), 0.0);
+    for(std::uint32_t id = 0; id < m_nodes.size(); ++id) {
+      Node& nd = m_nodes[id];
+      if(!nd.is_leaf() || !(nd.flags & KEPT)) continue;
+      wn[id] = m_domain.winding_number(make_cell(nd).center());
+      if(wn[id] >= 0.5) { nd.flags |= LEAK; leak_cells.push_back(id); }
+    }
+    std::vector<std::uint32_t> queue;
+    for(std::uint32_t start : leak_cells) {
+      if(!(m_nodes[start].flags & KEPT)) continue;   // already in a reported leak
+      Region_leak leak;
+      bool first_passage = true;
+      queue.clear();
+      queue.push_back(start);
+      m_nodes[start].flags &= std::uint8_t(~KEPT);
+      for(std::size_t q = 0; q < queue.size(); ++q) {
+        const std::uint32_t cur = queue[q];
+        const Cell c = make_cell(m_nodes[cur]);
+        const Bbox_3 cb = c.bbox();
+        ++leak.cells;
+        leak.volume += (cb.xmax() - cb.xmin()) * (cb.ymax() - cb.ymin()) * (cb.zmax() - cb.zmin());
+        leak.bbox += cb;
+        leak.max_winding_number = (std::max)(leak.max_winding_number, wn[cur]);
+        for(int f = 0; f < 6; ++f)
+          for_each_face_neighbour(cur, f, [&](std::uint32_t j) {
+            const Node& nj = m_nodes[j];
+            if(nj.flags & LEAK) {
+              if(nj.flags & KEPT) { m_nodes[j].flags &= std::uint8_t(~KEPT); queue.push_back(j); }
+            } else if(nj.flags & KEPT) {
+              // a face between the leak and the region: the smaller of the two cells' faces
+              const Bbox_3 nb = make_cell(nj).bbox();
+              const int a = f / 2;
+              double lo[3], hi[3];
+              for(int k = 0; k < 3; ++k) {
+                lo[k] = (std::max)(cb.min(k), nb.min(k));
+                hi[k] = (std::min)(cb.max(k), nb.max(k));
+              }
+              lo[a] = hi[a] = (f % 2) ? cb.max(a) : cb.min(a);
+              const Bbox_3 fb(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+              leak.passage = first_passage ? fb : leak.passage + fb;
+              first_passage = false;
+              ++leak.passage_faces;
+              leak.passage_area += (hi[(a + 1) % 3] - lo[(a + 1) % 3]) * (hi[(a + 2) % 3] - lo[(a + 2) % 3]);
+            }
+          });
+      }
+      m_leaks.push_back(leak);
+    }
+    for(std::uint32_t id : leak_cells) m_nodes[id].flags &= std::uint8_t(~LEAK);
+    std::stable_sort(m_leaks.begin(), m_leaks.end(),
+                     [](const Region_leak& a, const Region_leak& b) { return a.volume > b.volume; });
   }
 
   // Trimming: a kept cell whose kept face neighbours do not span the three axes (a finger or a
@@ -550,6 +614,8 @@ public:
     const char* box_names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
     for(int f = 0; f < 6; ++f) out.patch_names.push_back(box_names[f]);
     for(const std::string& s : m_domain.patch_names()) out.patch_names.push_back(s);
+    out.patch_types.assign(out.patch_names.size(), "wall");
+    for(int f = 0; f < 6; ++f) out.patch_types[std::size_t(f)] = "patch";
 
     const int D = m_stats.max_level_reached;   // keys at the finest level present
     std::vector<std::uint32_t> kept;
@@ -682,6 +748,7 @@ private:
   std::vector<std::uint32_t> m_free_list;
   std::vector<std::vector<std::uint32_t>> m_by_level;
   std::vector<int> m_component;
+  std::vector<Region_leak> m_leaks;
   std::size_t m_leaves = 0;
   Statistics m_stats;
 };
