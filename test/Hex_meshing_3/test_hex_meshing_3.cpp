@@ -5,6 +5,7 @@
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
+#include <CGAL/Hex_meshing_3/IO/read_surface.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/Octree_mesher_3.h>
 #include <CGAL/make_hex_mesh_3.h>
@@ -15,6 +16,10 @@
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+
+#include <boost/iostreams/device/back_inserter.hpp>
+#include <boost/iostreams/filter/gzip.hpp>
+#include <boost/iostreams/filtering_stream.hpp>
 
 #include <cassert>
 #include <cmath>
@@ -450,6 +455,211 @@ void test_exact_cell_test()
   std::cout << "exact cell/triangle tests: sheared hull and touching box OK\n";
 }
 
+
+// ---- dirty input: readers from memory, repair, sheets, overlapping parts, leaks ---------------
+
+typedef HM::IO::Surface_soup<Point_3> Soup;
+
+/// appends the 12 outward triangles of the box [lo, hi] as part `part`
+void add_box(Soup& s, const std::array<double, 3>& lo, const std::array<double, 3>& hi, int part)
+{
+  const std::size_t b = s.points.size();
+  for(int k = 0; k < 8; ++k) {
+    const auto& o = HM::hex_corner_offsets()[std::size_t(k)];
+    s.points.push_back(Point_3(o[0] ? hi[0] : lo[0], o[1] ? hi[1] : lo[1], o[2] ? hi[2] : lo[2]));
+  }
+  for(const auto& f : HM::hex_local_faces()) {
+    s.triangles.push_back({{std::uint32_t(b + f[0]), std::uint32_t(b + f[1]), std::uint32_t(b + f[2])}});
+    s.triangles.push_back({{std::uint32_t(b + f[0]), std::uint32_t(b + f[2]), std::uint32_t(b + f[3])}});
+    s.part_of_triangle.push_back(part);
+    s.part_of_triangle.push_back(part);
+  }
+}
+
+void test_dirty_input()
+{
+  std::cout << "dirty input\n";
+  // OBJ: groups and objects are parts, relative indices, quads fanned, unknown keywords ignored
+  {
+    Soup s;
+    HM::IO::read_surface_buffer("# x\nmtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n"
+                                "g base plate\nusemtl m\nf 1/1/1 2/1/1 3/1/1 4/1/1\no lid\nf -4//1 -2//1 -3//1\n",
+                                "a.obj", "obj", s, 2.0);
+    assert(s.part_names.size() == 2 && s.part_names[0] == "base plate" && s.part_names[1] == "lid");
+    assert(s.triangles.size() == 3 && s.polygons == 2);
+    assert((s.part_of_triangle == std::vector<int>{0, 0, 1}));
+    assert(s.triangles[2] == (std::array<std::uint32_t, 3>{{0, 2, 1}}));
+    assert(s.points[2] == Point_3(2, 2, 0));   // scaled
+    std::cout << "  OBJ: groups 'base plate', 'lid'; relative indices; scale\n";
+  }
+  // STL: ASCII with two solids, binary, and the same read from a gzip stream
+  {
+    const std::string tri = " facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+                            "  endloop\n endfacet\n";
+    Soup s;
+    HM::IO::read_surface_buffer("solid alpha\n" + tri + "endsolid alpha\nsolid beta\n" + tri + tri + "endsolid beta\n",
+                                "b.stl", "stl", s);
+    assert(s.part_names.size() == 2 && s.part_names[1] == "beta" && s.triangles.size() == 3);
+    assert((s.part_of_triangle == std::vector<int>{0, 1, 1}));
+    std::string bin(80, 'x');
+    const std::uint32_t n = 1;
+    bin.append(reinterpret_cast<const char*>(&n), 4);
+    const float f[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1.5f, 0};
+    bin.append(reinterpret_cast<const char*>(f), 48);
+    bin.append(2, '\0');
+    Soup sb;
+    HM::IO::read_surface_buffer(bin, "c.stl", "stl", sb);
+    assert(sb.triangles.size() == 1 && sb.points[2] == Point_3(0, 1.5, 0) && sb.part_names[0] == "c");
+    // gzip of the binary STL: the same soup
+    std::string gz;
+    {
+      namespace bio = boost::iostreams;
+      bio::filtering_ostream out;
+      out.push(bio::gzip_compressor());
+      out.push(bio::back_inserter(gz));
+      out << bin;
+    }
+    Soup sg;
+    HM::IO::read_surface_buffer(gz, "c.stl.gz", "stl", sg);
+    assert(sg.points == sb.points && sg.triangles == sb.triangles && sg.part_names == sb.part_names);
+    expect_input_error([&] { Soup t; HM::IO::read_surface_buffer(gz.substr(0, gz.size() - 9), "d.stl.gz", "stl", t); },
+                       "d.stl.gz: the gzip stream is corrupt or truncated");
+    std::cout << "  STL: two solids, binary, gzip\n";
+  }
+  // PLY: binary big endian with extra properties and an extra element
+  {
+    std::string ply = "ply\nformat binary_big_endian 1.0\ncomment x\nelement vertex 3\nproperty float x\nproperty uchar red\n"
+                      "property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                      "element edge 1\nproperty int a\nproperty int b\nend_header\n";
+    auto be32 = [&](const void* p) { const char* c = static_cast<const char*>(p); for(int i = 3; i >= 0; --i) ply += c[i]; };
+    const float xs[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 2, 0}};
+    for(const auto& v : xs) { be32(&v[0]); ply += char(7); be32(&v[1]); be32(&v[2]); }
+    ply += char(3);
+    for(int i : {0, 1, 2}) be32(&i);
+    for(int i : {0, 1}) be32(&i);
+    Soup s;
+    HM::IO::read_surface_buffer(ply, "e.ply", "ply", s);
+    assert(s.points.size() == 3 && s.points[2] == Point_3(0, 2, 0) && s.triangles.size() == 1);
+    expect_input_error([&] { Soup t; HM::IO::read_surface_buffer(ply.substr(0, ply.size() - 12), "e.ply", "ply", t); },
+                       "truncated");
+    std::cout << "  PLY: binary big endian, extra properties and elements\n";
+  }
+  // OFF: a failed read leaves the soup as it was (several files are appended one by one)
+  {
+    Soup s;
+    HM::IO::read_surface_buffer("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "f.off", "off", s);
+    expect_input_error([&] { HM::IO::read_surface_buffer("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n", "g.off", "off", s); },
+                       "g.off: line 6: a face refers to vertex 5");
+    assert(s.points.size() == 3 && s.triangles.size() == 1 && s.part_names.size() == 1 && s.files.size() == 1);
+    std::cout << "  OFF: a failed read leaves the soup untouched\n";
+  }
+  // repair: a closed box with duplicated, reversed and flipped faces is repaired to the closed box
+  {
+    Soup s;
+    add_box(s, {{0, 0, 0}}, {{1, 1, 1}}, 0);
+    s.part_names = {"box"};
+    s.triangles.push_back(s.triangles[0]); s.part_of_triangle.push_back(0);              // duplicate
+    auto r = s.triangles[3]; std::swap(r[1], r[2]);
+    s.triangles.push_back(r); s.part_of_triangle.push_back(0);                            // reversed copy
+    std::swap(s.triangles[5][0], s.triangles[5][1]);                                      // flipped face
+    Domain d(s);
+    const auto& m = d.input_summary();
+    assert(m.duplicate_triangles == 1 && m.reversed_duplicates == 1 && m.sheet_triangles == 0);
+    assert(m.reoriented_triangles == 1 && m.closed && d.has_exact_inside_test() && d.number_of_triangles() == 12);
+    assert(d.is_inside(Point_3(0.5, 0.5, 0.5)) && !d.is_inside(Point_3(1.5, 0.5, 0.5)));
+    std::cout << "  repair: duplicate, reversed copy and flipped face of a box -> the closed box, exact test\n";
+  }
+  // a zero-thickness sheet (a square and its reversed copy) beside a box: kept, two-sided
+  {
+    Soup s;
+    add_box(s, {{0, 0, 0}}, {{1, 1, 1}}, 0);
+    const std::uint32_t b = std::uint32_t(s.points.size());
+    for(const Point_3& p : {Point_3(2, 0, 0.5), Point_3(3, 0, 0.5), Point_3(3, 1, 0.5), Point_3(2, 1, 0.5)}) s.points.push_back(p);
+    for(auto t : {std::array<std::uint32_t, 3>{{b, b + 1, b + 2}}, std::array<std::uint32_t, 3>{{b, b + 2, b + 3}},
+                  std::array<std::uint32_t, 3>{{b, b + 2, b + 1}}, std::array<std::uint32_t, 3>{{b, b + 3, b + 2}}}) {
+      s.triangles.push_back(t); s.part_of_triangle.push_back(1);
+    }
+    s.part_names = {"box", "sheet"};
+    Domain d(s);
+    const auto& m = d.input_summary();
+    assert(m.sheet_triangles == 2 && m.reversed_duplicates == 2 && d.number_of_triangles() == 14);
+    assert(std::abs(d.winding_number(Point_3(2.5, 0.5, 0.6))) < 1e-6);   // the sheet bounds nothing
+    assert(std::abs(d.winding_number(Point_3(0.5, 0.5, 0.5)) - 1) < 1e-6);
+    Mesh mesh;
+    std::vector<HM::Region_leak> leaks;
+    HM::Status st = CGAL::make_hex_mesh_3(d, Criteria(0.25, 0.125), mesh,
+                                          HP::meshing_box(CGAL::Bbox_3(-1, -1, -1, 4, 2, 2)).region_seed(Point_3(-0.9, -0.9, -0.9))
+                                              .leaks(std::back_inserter(leaks)));
+    assert(st == HM::Status::SUCCESS && leaks.empty());
+    check_mesh(mesh, "air around a box and a sheet");
+    std::size_t sheet_faces = 0;
+    for(const auto& f : mesh.boundary_faces) if(mesh.patch_names[std::size_t(f.patch)] == "sheet") ++sheet_faces;
+    assert(sheet_faces > 0);   // the sheet bounds the air on both sides
+    std::cout << "  sheet: kept two-sided, bounds " << sheet_faces << " boundary faces, winding number 0 beside it\n";
+  }
+  // overlapping parts: the inner faces are left out, the union is meshed as one
+  {
+    Soup s;
+    add_box(s, {{0, 0, 0}}, {{1, 1, 1}}, 0);
+    add_box(s, {{0.5, 0.25, 0.25}}, {{1.5, 0.75, 0.75}}, 1);
+    s.part_names = {"a", "b"};
+    Domain d(s);
+    // b's face at x = 0.5 is inside a, b's sides and a's face at x = 1 partly
+    assert(d.input_summary().internal_triangles == 12 && !d.has_exact_inside_test());
+    Mesh mesh;
+    CGAL::make_hex_mesh_3(d, Criteria(0.125, 0.125), mesh, HP::meshing_box(CGAL::Bbox_3(-0.5, -0.5, -0.5, 2, 1.5, 1.5)));
+    check_mesh(mesh, "union of overlapping boxes");
+    double v = 0;
+    for(const auto& h : mesh.hexahedra) {
+      const Point_3 &p = mesh.points[h[0]], &q = mesh.points[h[6]];
+      v += (q.x() - p.x()) * (q.y() - p.y()) * (q.z() - p.z());
+    }
+    // staircase: the cells touching the union's boundary are cut, nothing inside it is
+    std::cout << "  overlapping boxes: " << d.input_summary().internal_triangles << " triangles inside, "
+              << d.input_summary().split_triangles << " pieces kept, volume " << v << "\n";
+    assert(std::abs(v - (0.75 * 0.75 * 0.75 + 0.5 * 0.25 * 0.25)) < 1e-12);
+  }
+  // leak: a box with a hole in its top, meshed around from outside
+  {
+    Soup s;
+    add_box(s, {{0, 0, 0}}, {{1, 1, 1}}, 0);
+    // replace the top face (z+, the last two triangles) by a frame around the hole [0.3,0.7]^2
+    s.triangles.resize(10); s.part_of_triangle.resize(10);
+    const double g[4] = {0, 0.3, 0.7, 1};
+    std::map<std::pair<int, int>, std::uint32_t> id;
+    for(int i = 0; i < 4; ++i) for(int j = 0; j < 4; ++j) {
+      id[{i, j}] = std::uint32_t(s.points.size());
+      s.points.push_back(Point_3(g[i], g[j], 1));
+    }
+    for(int i = 0; i < 3; ++i) for(int j = 0; j < 3; ++j) {
+      if(i == 1 && j == 1) continue;
+      const std::uint32_t a = id[{i, j}], b = id[{i + 1, j}], c = id[{i + 1, j + 1}], e = id[{i, j + 1}];
+      s.triangles.push_back({{a, b, c}}); s.triangles.push_back({{a, c, e}});
+      s.part_of_triangle.push_back(0); s.part_of_triangle.push_back(0);
+    }
+    s.part_names = {"holed"};
+    Domain d(s);
+    Mesh mesh;
+    std::vector<HM::Region_leak> leaks;
+    CGAL::make_hex_mesh_3(d, Criteria(0.1, 0.05), mesh,
+                          HP::meshing_box(CGAL::Bbox_3(-0.5, -0.5, -0.5, 1.5, 1.5, 1.5)).region_seed(Point_3(-0.45, -0.45, -0.45))
+                              .leaks(std::back_inserter(leaks)));
+    assert(leaks.size() == 1);
+    const HM::Region_leak& l = leaks[0];
+    std::cout << "  leak: " << l.cells << " cells, volume " << l.volume << ", passage (" << l.passage.xmin() << ", "
+              << l.passage.ymin() << ", " << l.passage.zmin() << ") - (" << l.passage.xmax() << ", " << l.passage.ymax()
+              << ", " << l.passage.zmax() << "), " << l.passage_faces << " faces\n";
+    assert(l.passage.xmin() >= 0.3 - 1e-9 && l.passage.xmax() <= 0.7 + 1e-9 && l.passage.ymin() >= 0.3 - 1e-9 &&
+           l.passage.ymax() <= 0.7 + 1e-9 && std::abs(l.passage.zmin() - 1) < 1e-9 && std::abs(l.passage.zmax() - 1) < 1e-9);
+    assert(l.volume > 0.5 && l.volume < 1 && l.max_winding_number > 0.9);
+    for(const auto& h : mesh.hexahedra) {   // no cell of the mesh inside the box
+      const Point_3 c = CGAL::midpoint(mesh.points[h[0]], mesh.points[h[6]]);
+      assert(!(c.x() > 0 && c.x() < 1 && c.y() > 0 && c.y() < 1 && c.z() > 0 && c.z() < 1));
+    }
+    check_mesh(mesh, "air around a holed box");
+  }
+}
+
 int main(int argc, char** argv)
 {
   std::cout << std::unitbuf;   // keep the log in order with assertion messages
@@ -461,6 +671,7 @@ int main(int argc, char** argv)
     test_winding_number(f);
   test_meshing();
   test_readers_and_errors();
+  test_dirty_input();
   std::cout << "all checks passed\n";
   return EXIT_SUCCESS;
 }

@@ -28,6 +28,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <map>
 #include <cstdint>
 #include <memory>
@@ -72,7 +73,8 @@ public:
     std::size_t reversed_duplicates = 0;    ///< removed: same corners, opposite orientation to a kept face
     std::size_t sheet_triangles = 0;        ///< kept faces of zero-thickness sheets (a face and its reversed copy), two-sided
     std::size_t reoriented_triangles = 0;   ///< flipped to agree with their neighbours or to face outward
-    std::size_t internal_triangles = 0;     ///< left out of the boundary: inside the volume on both sides (overlapping parts)
+    std::size_t internal_triangles = 0;     ///< left out of the boundary, wholly or partly: inside the volume on both sides (overlapping parts)
+    std::size_t split_triangles = 0;        ///< pieces kept of the partly inside triangles (split at edge midpoints)
     std::size_t components = 0;             ///< edge-connected components (sheets excluded)
     std::size_t boundary_edges = 0;         ///< edges of one face: holes, cracks, open rims (after repair)
     std::size_t non_manifold_edges = 0;     ///< edges of more than two faces (after repair)
@@ -319,42 +321,134 @@ private:
     if(!m_side) remove_internal_triangles();
   }
 
-  // Overlapping parts (a spout pushed into a body, parts exported with overlaps): a triangle whose
-  // two sides are both inside (winding number >= 0.5 just off it on either side) bounds nothing
-  // and would only stop the grid inside the volume; it is left out of the boundary (the winding
-  // number keeps it). Probed at the centroid, 1e-6 of the bounding box diagonal off the triangle.
+  // Overlapping parts (a spout pushed into a body, parts exported with overlaps): the part of a
+  // triangle that has the inside (winding number >= 0.5) on both of its sides bounds nothing and
+  // would only stop the grid inside the volume; it is left out of the boundary (the winding number
+  // keeps every triangle). Only triangles overlapping the bounding box of another edge-connected
+  // component are examined. A triangle is sampled (1e-6 of the bounding box diagonal off it, on both
+  // sides) at its centroid, near its corners and at its edge midpoints: all samples inside on both
+  // sides -> left out; none -> kept; some -> split into 4 at its edge midpoints, recursively (at most
+  // 6 times), so that the part outside the other body stays (a sub-triangle is kept at the last
+  // level unless all its samples are inside). Sub-triangle corners are rounded midpoints.
   void remove_internal_triangles()
   {
+    const std::size_t n = m_indices.size();
     const double diag = std::sqrt(CGAL::square(m_bbox.xmax() - m_bbox.xmin()) + CGAL::square(m_bbox.ymax() - m_bbox.ymin()) +
                                   CGAL::square(m_bbox.zmax() - m_bbox.zmin()));
     const double eps = 1e-6 * diag;
-    std::vector<char> internal(m_indices.size(), 0);
-    for(std::size_t i = 0; i < m_indices.size(); ++i) {
-      const auto a = internal_vec(m_points[m_indices[i][0]]), b = internal_vec(m_points[m_indices[i][1]]),
-                 c = internal_vec(m_points[m_indices[i][2]]);
-      const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-      double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if(!(len > 0)) continue;
-      std::array<double, 3> p, q;
-      for(int k = 0; k < 3; ++k) {
-        const double m = (a[k] + b[k] + c[k]) / 3.0;
-        p[std::size_t(k)] = m + eps * n[k] / len;
-        q[std::size_t(k)] = m - eps * n[k] / len;
-      }
-      if(m_wn(p) >= 0.5 && m_wn(q) >= 0.5) internal[i] = 1;
+    // edge-connected components and their boxes
+    std::vector<std::uint32_t> uf(n);
+    for(std::size_t i = 0; i < n; ++i) uf[i] = std::uint32_t(i);
+    auto find = [&](std::uint32_t x) { while(uf[x] != x) { uf[x] = uf[uf[x]]; x = uf[x]; } return x; };
+    {
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
+      edges.reserve(3 * n);
+      for(std::size_t f = 0; f < n; ++f)
+        for(int k = 0; k < 3; ++k) edges.push_back({edge_key(m_indices[f][k], m_indices[f][(k + 1) % 3]), std::uint32_t(f)});
+      std::sort(edges.begin(), edges.end());
+      for(std::size_t e = 1; e < edges.size(); ++e)
+        if(edges[e].first == edges[e - 1].first) {
+          const std::uint32_t x = find(edges[e].second), y = find(edges[e - 1].second);
+          if(x != y) uf[(std::max)(x, y)] = (std::min)(x, y);
+        }
     }
+    std::vector<std::uint32_t> roots;
+    std::vector<int> comp(n);
+    std::vector<Bbox_3> comp_box;
+    {
+      std::vector<int> id(n, -1);
+      for(std::size_t f = 0; f < n; ++f) {
+        const std::uint32_t r = find(std::uint32_t(f));
+        if(id[r] < 0) { id[r] = int(comp_box.size()); comp_box.push_back(Bbox_3()); }
+        comp[f] = id[r];
+        comp_box[std::size_t(id[r])] += m_tri_bboxes[f];
+      }
+    }
+    if(comp_box.size() < 2) return;   // a single component cannot overlap another one
+
+    typedef std::array<double, 3> V;
+    auto both_sides_inside = [&](const V& p, const V& nrm) {
+      V x, y;
+      for(int k = 0; k < 3; ++k) { x[std::size_t(k)] = p[std::size_t(k)] + eps * nrm[std::size_t(k)]; y[std::size_t(k)] = p[std::size_t(k)] - eps * nrm[std::size_t(k)]; }
+      return m_wn(x) >= 0.5 && m_wn(y) >= 0.5;
+    };
+    // 0: no sample inside on both sides, 1: some, 2: all
+    auto classify = [&](const V& a, const V& b, const V& c) {
+      const V u{{b[0] - a[0], b[1] - a[1], b[2] - a[2]}}, v{{c[0] - a[0], c[1] - a[1], c[2] - a[2]}};
+      V nrm{{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]}};
+      const double len = std::sqrt(nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]);
+      if(!(len > 0)) return 0;
+      for(double& x : nrm) x /= len;
+      static const double w[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.98, 0.01, 0.01}, {0.01, 0.98, 0.01}, {0.01, 0.01, 0.98},
+                                     {0.495, 0.495, 0.01}, {0.01, 0.495, 0.495}, {0.495, 0.01, 0.495}};
+      int inside = 0;
+      for(const auto& wk : w) {
+        V p;
+        for(int k = 0; k < 3; ++k) p[std::size_t(k)] = wk[0] * a[std::size_t(k)] + wk[1] * b[std::size_t(k)] + wk[2] * c[std::size_t(k)];
+        inside += both_sides_inside(p, nrm);
+        if(inside > 0 && inside <= (&wk - w)) return 1;   // mixed already
+      }
+      return inside == 0 ? 0 : (inside == 7 ? 2 : 1);
+    };
+    std::vector<Triangle_indices> out_idx;
+    std::vector<int> out_patch;
+    std::vector<bool> out_sided;
+    std::vector<char> changed(n, 0);
+    std::size_t left_out = 0;
+    std::function<void(const V&, const V&, const V&, int, std::size_t)> split =
+        [&](const V& a, const V& b, const V& c, int depth, std::size_t f) {
+      const int k = classify(a, b, c);
+      if(k == 2) return;
+      if(k == 0 || depth == 6) {
+        Triangle_indices t;
+        const V* v[3] = {&a, &b, &c};
+        for(int i = 0; i < 3; ++i) {
+          t[std::size_t(i)] = std::uint32_t(m_points.size());
+          m_points.push_back(Point_3((*v[i])[0], (*v[i])[1], (*v[i])[2]));
+        }
+        out_idx.push_back(t); out_patch.push_back(m_patch[f]); out_sided.push_back(m_two_sided[f]);
+        return;
+      }
+      auto mid = [](const V& p, const V& q) { return V{{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}}; };
+      const V ab = mid(a, b), bc = mid(b, c), ca = mid(c, a);
+      split(a, ab, ca, depth + 1, f); split(ab, b, bc, depth + 1, f);
+      split(ca, bc, c, depth + 1, f); split(ab, bc, ca, depth + 1, f);
+    };
+    for(std::size_t f = 0; f < n; ++f) {
+      bool candidate = false;
+      for(std::size_t c = 0; c < comp_box.size() && !candidate; ++c)
+        candidate = int(c) != comp[f] && CGAL::do_overlap(comp_box[c], m_tri_bboxes[f]);
+      if(!candidate) continue;
+      const V a = internal_vec(m_points[m_indices[f][0]]), b = internal_vec(m_points[m_indices[f][1]]),
+              c = internal_vec(m_points[m_indices[f][2]]);
+      const int k = classify(a, b, c);
+      if(k == 0) continue;
+      changed[f] = 1;
+      ++left_out;
+      if(k == 1) split(a, b, c, 1, f);   // the parts outside the other body are appended
+    }
+    if(left_out == 0) return;
+    // keep the unchanged triangles in order, then the kept pieces of the split ones
     std::size_t j = 0;
-    m_bbox = Bbox_3();
-    for(std::size_t i = 0; i < m_indices.size(); ++i) {
-      if(internal[i]) { ++m_summary.internal_triangles; continue; }
+    for(std::size_t i = 0; i < n; ++i) {
+      if(changed[i]) continue;
       m_indices[j] = m_indices[i]; m_triangles[j] = m_triangles[i]; m_tri_bboxes[j] = m_tri_bboxes[i];
       m_patch[j] = m_patch[i]; m_two_sided[j] = m_two_sided[i];
-      m_bbox += m_tri_bboxes[j];
       ++j;
     }
-    if(j == 0) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)");
+    m_summary.internal_triangles = left_out;
+    m_summary.split_triangles = out_idx.size();
     m_indices.resize(j); m_triangles.resize(j); m_tri_bboxes.resize(j); m_patch.resize(j); m_two_sided.resize(j);
+    for(std::size_t i = 0; i < out_idx.size(); ++i) {
+      const Triangle_indices& t = out_idx[i];
+      Triangle_3 tri(m_points[t[0]], m_points[t[1]], m_points[t[2]]);
+      if(tri.is_degenerate()) continue;
+      m_indices.push_back(t); m_triangles.push_back(tri); m_tri_bboxes.push_back(tri.bbox());
+      m_patch.push_back(out_patch[i]); m_two_sided.push_back(out_sided[i]);
+    }
+    if(m_indices.empty()) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)");
+    m_bbox = Bbox_3();
+    for(const Bbox_3& bb : m_tri_bboxes) m_bbox += bb;
   }
 
   static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b)
