@@ -203,8 +203,8 @@ def main():
     for src in ("duct.obj", "duct.stl"):
         out = os.path.join(W, "patches_" + src.replace(".", "_"))
         os.makedirs(out)
-        case, msh, med, rep = (os.path.join(out, n) for n in ("case", "m.msh", "m.mesh", "r.json"))
-        hexmesh(ctx, [os.path.join(W, src)], [case, msh, med], ["-q", "--size", "0.25", "--surface-size", "0.125"], rep)
+        case, msh, med, vtu, rep = (os.path.join(out, n) for n in ("case", "m.msh", "m.mesh", "m.vtu", "r.json"))
+        hexmesh(ctx, [os.path.join(W, src)], [case, msh, med, vtu], ["-q", "--size", "0.25", "--surface-size", "0.125"], rep)
         j = json.load(open(rep))
         faces = {p["name"]: p["faces"] for p in j["patches"]}
         # the duct's ends are 1x1 and its walls 2x1 (x4): faces of 0.125 or coarser cells
@@ -226,6 +226,15 @@ def main():
         check(len(me.cells_dict["hexahedron"]) == j["counts"]["cells"] and len(me.points) == j["counts"]["vertices"]
               and len(me.cells_dict["quad"]) == j["counts"]["boundary_faces"],
               f"{src}: Medit read back with the same hexahedra, vertices and boundary quads (meshio)")
+        mv = meshio.read(vtu)
+        vpatch = np.concatenate([d for d in mv.cell_data["patch"]])
+        for p_index, p in enumerate(j["patches"]):
+            if p["name"] in ("inlet", "outlet", "walls"):
+                arr = mv.field_data.get("patch:" + p["name"])
+                check(arr is not None and int(np.ravel(arr)[0]) == p_index and int((vpatch == p_index).sum()) == p["faces"],
+                      f"{src}: VTU field data patch:{p['name']} = {p_index}, {p['faces']} quads with that patch (meshio)")
+        check(len(mv.cells_dict["hexahedron"]) == j["counts"]["cells"] and len(mv.cells_dict["quad"]) == j["counts"]["boundary_faces"],
+              f"{src}: VTU read back with the hexahedra and the boundary quads (meshio)")
         comments = open(med).read()
         refs = me.cell_data_dict["medit:ref"]["quad"]
         for p_index, p in enumerate(j["patches"]):
