@@ -29,6 +29,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -228,14 +229,15 @@ struct Counting_visitor
 };
 
 template <typename F>
-void expect_input_error(F&& f, const std::string& needle)
+void expect_input_error(F&& f, const std::string& needle, std::optional<HM::Input_error_cause> cause = std::nullopt)
 {
   try {
     f();
   } catch(const HM::Input_error& e) {
     const std::string w = e.what();
-    std::cout << "  error as expected: " << w << "\n";
+    std::cout << "  error as expected (" << HM::cause_name(e.cause()) << "): " << w << "\n";
     assert(w.find(needle) != std::string::npos);
+    assert(!cause || e.cause() == *cause);
     return;
   }
   std::cerr << "no Input_error (expected one containing '" << needle << "')\n";
@@ -332,11 +334,11 @@ void test_meshing()
 
   // bad seeds and boxes
   expect_input_error([&] { Mesh m; CGAL::make_hex_mesh_3(eight, c2, m, HP::meshing_box(box).region_seed(Point_3(5, 0, 0))); },
-                     "outside the meshing box");
+                     "outside the meshing box", HM::Input_error_cause::BAD_SEED);
   const Point_3 in_body = CGAL::midpoint(m1.points[m1.hexahedra[0][0]], m1.points[m1.hexahedra[0][6]]);
   expect_input_error([&] { Mesh m; CGAL::make_hex_mesh_3(eight, c2, m, HP::meshing_box(box).region_seed(in_body)); },
-                     "inside a body");
-  expect_input_error([&] { Mesh m; Criteria bad(-1, 0); CGAL::make_hex_mesh_3(eight, bad, m); }, "positive");
+                     "inside a body", HM::Input_error_cause::BAD_SEED);
+  expect_input_error([&] { Mesh m; Criteria bad(-1, 0); CGAL::make_hex_mesh_3(eight, bad, m); }, "positive", HM::Input_error_cause::BAD_PARAMETER);
 
   // exact hex-grid case: the cube [-1,1]^3 with a grid aligned to its faces; the cells touching
   // the faces are cut (closed hulls), the rest is exactly [-0.75,0.75]^3 at size 0.25
@@ -420,13 +422,13 @@ void test_readers_and_errors()
     std::ofstream("tmp_nan.off") << "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n";
     std::ofstream("tmp_noface.off") << "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n";
     std::ofstream("tmp_badindex.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
-    expect_input_error([] { Domain d("data/does_not_exist.off"); }, "does_not_exist.off: cannot open");
-    expect_input_error([] { Domain d("tmp_empty.off"); }, "tmp_empty.off: the file is empty");
-    expect_input_error([] { Domain d("tmp_garbage.off"); }, "tmp_garbage.off");
-    expect_input_error([] { Domain d("tmp_nan.off"); }, "tmp_nan.off");
-    expect_input_error([] { Domain d("tmp_noface.off"); }, "tmp_noface.off");
-    expect_input_error([] { Domain d("tmp_badindex.off"); }, "tmp_badindex.off");
-    expect_input_error([] { Domain d("data/cube.xyz"); }, "unknown surface format");
+    expect_input_error([] { Domain d("data/does_not_exist.off"); }, "does_not_exist.off: cannot open", HM::Input_error_cause::UNREADABLE);
+    expect_input_error([] { Domain d("tmp_empty.off"); }, "tmp_empty.off: the file is empty", HM::Input_error_cause::EMPTY);
+    expect_input_error([] { Domain d("tmp_garbage.off"); }, "tmp_garbage.off", HM::Input_error_cause::MALFORMED);
+    expect_input_error([] { Domain d("tmp_nan.off"); }, "tmp_nan.off", HM::Input_error_cause::NON_FINITE);
+    expect_input_error([] { Domain d("tmp_noface.off"); }, "tmp_noface.off", HM::Input_error_cause::NO_SURFACE);
+    expect_input_error([] { Domain d("tmp_badindex.off"); }, "tmp_badindex.off", HM::Input_error_cause::BAD_INDEX);
+    expect_input_error([] { Domain d("data/cube.xyz"); }, "unknown surface format", HM::Input_error_cause::UNSUPPORTED);
     for(const char* f : {"tmp_empty.off", "tmp_garbage.off", "tmp_nan.off", "tmp_noface.off", "tmp_badindex.off"}) std::remove(f);
   }
 }
@@ -523,7 +525,7 @@ void test_dirty_input()
     HM::IO::read_surface_buffer(gz, "c.stl.gz", "stl", sg);
     assert(sg.points == sb.points && sg.triangles == sb.triangles && sg.part_names == sb.part_names);
     expect_input_error([&] { Soup t; HM::IO::read_surface_buffer(gz.substr(0, gz.size() - 9), "d.stl.gz", "stl", t); },
-                       "d.stl.gz: the gzip stream is corrupt or truncated");
+                       "d.stl.gz: the gzip stream is corrupt or truncated", HM::Input_error_cause::TRUNCATED);
     std::cout << "  STL: two solids, binary, gzip\n";
   }
   // PLY: binary big endian with extra properties and an extra element
@@ -541,7 +543,7 @@ void test_dirty_input()
     HM::IO::read_surface_buffer(ply, "e.ply", "ply", s);
     assert(s.points.size() == 3 && s.points[2] == Point_3(0, 2, 0) && s.triangles.size() == 1);
     expect_input_error([&] { Soup t; HM::IO::read_surface_buffer(ply.substr(0, ply.size() - 12), "e.ply", "ply", t); },
-                       "truncated");
+                       "truncated", HM::Input_error_cause::TRUNCATED);
     std::cout << "  PLY: binary big endian, extra properties and elements\n";
   }
   // OFF: a failed read leaves the soup as it was (several files are appended one by one)
@@ -549,7 +551,7 @@ void test_dirty_input()
     Soup s;
     HM::IO::read_surface_buffer("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "f.off", "off", s);
     expect_input_error([&] { HM::IO::read_surface_buffer("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n", "g.off", "off", s); },
-                       "g.off: line 6: a face refers to vertex 5");
+                       "g.off: line 6: a face refers to vertex 5", HM::Input_error_cause::BAD_INDEX);
     assert(s.points.size() == 3 && s.triangles.size() == 1 && s.part_names.size() == 1 && s.files.size() == 1);
     std::cout << "  OFF: a failed read leaves the soup untouched\n";
   }

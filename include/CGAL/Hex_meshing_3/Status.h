@@ -39,14 +39,56 @@ inline const char* status_name(Status s)
 
 /*!
  * \ingroup PkgHexMeshing3Functions
- * \brief thrown for input the package cannot use: an unreadable or empty surface file, a region
- * seed outside the box or inside a body, a box that cannot hold the requested sizes.
- * `what()` is a one-line message naming the cause (and the file, when there is one).
+ * \brief why an `Input_error` was thrown.
+ */
+enum class Input_error_cause
+{
+  MALFORMED,       ///< the file does not follow its format (garbage, a bad keyword or number)
+  UNREADABLE,      ///< the file cannot be opened or read
+  EMPTY,           ///< the file is empty
+  TRUNCATED,       ///< the file ends before its content does (or a gzip stream is cut)
+  NON_FINITE,      ///< a coordinate is NaN or infinite
+  BAD_INDEX,       ///< a face refers to a vertex that does not exist
+  UNSUPPORTED,     ///< a format or variant the readers do not support
+  NO_SURFACE,      ///< no usable triangle (no face, only degenerate ones, or all inside the volume)
+  BAD_SEED,        ///< the region seed is outside the box, inside a body, or in a cut cell
+  BAD_PARAMETER    ///< a size, box, level or scale that cannot be used
+};
+
+/// \brief a short name of a cause (`"truncated"`, `"bad_seed"`, ...)
+inline const char* cause_name(Input_error_cause c)
+{
+  switch(c) {
+    case Input_error_cause::MALFORMED: return "malformed";
+    case Input_error_cause::UNREADABLE: return "unreadable";
+    case Input_error_cause::EMPTY: return "empty";
+    case Input_error_cause::TRUNCATED: return "truncated";
+    case Input_error_cause::NON_FINITE: return "non_finite";
+    case Input_error_cause::BAD_INDEX: return "bad_index";
+    case Input_error_cause::UNSUPPORTED: return "unsupported";
+    case Input_error_cause::NO_SURFACE: return "no_surface";
+    case Input_error_cause::BAD_SEED: return "bad_seed";
+    case Input_error_cause::BAD_PARAMETER: return "bad_parameter";
+  }
+  return "unknown";
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Functions
+ * \brief thrown for input the package cannot use: an unreadable, empty, truncated or malformed
+ * surface file, a non-finite coordinate, a region seed outside the box or inside a body, a box
+ * that cannot hold the requested sizes. `what()` is a one-line message naming the file (when there
+ * is one) and the cause; `cause()` says which kind of problem it is.
  */
 class Input_error : public std::runtime_error
 {
 public:
-  explicit Input_error(const std::string& what) : std::runtime_error(what) {}
+  explicit Input_error(const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED)
+    : std::runtime_error(what), m_cause(cause) {}
+  Input_error_cause cause() const { return m_cause; }
+
+private:
+  Input_error_cause m_cause;
 };
 
 /*!

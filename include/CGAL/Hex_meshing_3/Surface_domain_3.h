@@ -238,14 +238,14 @@ private:
     for(int p : patch_of_triangle)
       if(p < 0 || std::size_t(p) >= patch_names.size())
         throw Input_error("surface: a triangle's part index " + std::to_string(p) + " is not among the " +
-                          std::to_string(patch_names.size()) + " part names");
+                          std::to_string(patch_names.size()) + " part names", Input_error_cause::MALFORMED);
     for(const Point_3& p : points)
       if(!std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
          !std::isfinite(CGAL::to_double(p.z())))
-        throw Input_error("surface: a vertex has a coordinate that is not a finite number");
+        throw Input_error("surface: a vertex has a coordinate that is not a finite number", Input_error_cause::NON_FINITE);
     for(const Triangle_indices& t : triangles)
       for(std::uint32_t v : t)
-        if(v >= points.size()) throw Input_error("surface: a triangle refers to a missing vertex");
+        if(v >= points.size()) throw Input_error("surface: a triangle refers to a missing vertex", Input_error_cause::MALFORMED);
 
     // merge exactly coincident points (soups from STL have one point per triangle corner)
     std::vector<std::vector<std::size_t>> polys(triangles.size());
@@ -271,7 +271,7 @@ private:
     polys.clear();
     polys.shrink_to_fit();
     if(tris.empty())
-      throw Input_error("surface: no non-degenerate triangle");
+      throw Input_error("surface: no non-degenerate triangle", Input_error_cause::NO_SURFACE);
     m_patch_names = std::move(patch_names);
     repair(tris, parts);
 
@@ -446,7 +446,7 @@ private:
       m_indices.push_back(t); m_triangles.push_back(tri); m_tri_bboxes.push_back(tri.bbox());
       m_patch.push_back(out_patch[i]); m_two_sided.push_back(out_sided[i]);
     }
-    if(m_indices.empty()) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)");
+    if(m_indices.empty()) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)", Input_error_cause::NO_SURFACE);
     m_bbox = Bbox_3();
     for(const Bbox_3& bb : m_tri_bboxes) m_bbox += bb;
   }

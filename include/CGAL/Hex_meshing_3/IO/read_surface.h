@@ -107,7 +107,7 @@ inline std::string gunzip(const std::string& data, const std::string& name)
     in.push(bio::array_source(data.data(), data.size()));
     bio::copy(in, bio::back_inserter(out));
   } catch(const std::exception& e) {
-    throw Input_error(name + ": the gzip stream is corrupt or truncated (" + e.what() + ")");
+    throw Input_error(name + ": the gzip stream is corrupt or truncated (" + e.what() + ")", Input_error_cause::TRUNCATED);
   }
   return out;
 }
@@ -169,7 +169,7 @@ void check_finite(const std::vector<Point_3>& pts, std::size_t from, const std::
     if(!std::isfinite(CGAL::to_double(p.x())) || !std::isfinite(CGAL::to_double(p.y())) ||
        !std::isfinite(CGAL::to_double(p.z())))
       throw Input_error(name + ": vertex " + std::to_string(i - from + 1) +
-                        " has a coordinate that is not a finite number");
+                        " has a coordinate that is not a finite number", Input_error_cause::NON_FINITE);
   }
 }
 
@@ -206,7 +206,8 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
       for(int k = 0; k < 3; ++k)
         if(!parse_double(c.token(), x[k]))
           throw Input_error(name + ": line " + std::to_string(c.line) + ": a vertex needs three numbers" +
-                            (c.p >= c.end ? " (the file ends there: truncated)" : ""));
+                            (c.p >= c.end ? " (the file ends there: truncated)" : ""),
+                            c.p >= c.end ? Input_error_cause::TRUNCATED : Input_error_cause::MALFORMED);
       soup.points.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
     } else if(kw == "f") {
       const std::size_t first = raw.size();
@@ -216,18 +217,18 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
         const auto r = std::from_chars(idx.data(), idx.data() + idx.size(), i);
         if(r.ec != std::errc() || r.ptr != idx.data() + idx.size() || i == 0)
           throw Input_error(name + ": line " + std::to_string(c.line) + ": '" + std::string(t) +
-                            "' is not a vertex index");
+                            "' is not a vertex index", Input_error_cause::MALFORMED);
         const long long nv = (long long)(soup.points.size() - base);
         if(i < 0) {   // relative to the vertices read so far
           if(-i > nv)
             throw Input_error(name + ": line " + std::to_string(c.line) + ": relative index " +
-                              std::to_string(i) + " but only " + std::to_string(nv) + " vertices so far");
+                              std::to_string(i) + " but only " + std::to_string(nv) + " vertices so far", Input_error_cause::BAD_INDEX);
           i = nv + 1 + i;
         }
         raw.push_back(i);
       }
       if(raw.size() - first < 3)
-        throw Input_error(name + ": line " + std::to_string(c.line) + ": a face needs at least three vertices");
+        throw Input_error(name + ": line " + std::to_string(c.line) + ": a face needs at least three vertices", Input_error_cause::MALFORMED);
       if(part < 0) part = soup.part(pending);
       face_ranges.push_back({first, raw.size()});
       face_part.push_back(part);
@@ -249,13 +250,13 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
     for(std::size_t k = face_ranges[f].first; k < face_ranges[f].second; ++k) {
       if(raw[k] > (long long)nv)
         throw Input_error(name + ": line " + std::to_string(face_line[f]) + ": a face refers to vertex " +
-                          std::to_string(raw[k]) + " but the file has " + std::to_string(nv) + " vertices");
+                          std::to_string(raw[k]) + " but the file has " + std::to_string(nv) + " vertices", Input_error_cause::BAD_INDEX);
       poly.push_back(base + std::size_t(raw[k] - 1));
     }
     add_polygon(soup, poly, face_part[f]);
   }
   if(face_ranges.empty())
-    throw Input_error(name + ": no face (is this an OBJ file?)");
+    throw Input_error(name + ": no face (is this an OBJ file?)", Input_error_cause::NO_SURFACE);
   (void)ignored;
 }
 
@@ -266,15 +267,15 @@ void read_STL_binary(const std::string& data, const std::string& name, double sc
 {
   if(data.size() < 84)
     throw Input_error(name + ": too short for a binary STL (" + std::to_string(data.size()) +
-                      " bytes) and not an ASCII STL");
+                      " bytes) and not an ASCII STL", Input_error_cause::TRUNCATED);
   std::uint32_t n = 0;
   std::memcpy(&n, data.data() + 80, 4);   // little-endian on every platform we build for
   const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
   if(expected != data.size())
     throw Input_error(name + ": binary STL declares " + std::to_string(n) + " triangles (" +
                       std::to_string(expected) + " bytes) but has " + std::to_string(data.size()) +
-                      " bytes (truncated or not an STL file)");
-  if(n == 0) throw Input_error(name + ": the STL file has no triangle");
+                      " bytes (truncated or not an STL file)", Input_error_cause::TRUNCATED);
+  if(n == 0) throw Input_error(name + ": the STL file has no triangle", Input_error_cause::NO_SURFACE);
   const std::size_t base = soup.points.size();
   const int part = soup.part(stem_of(name));
   soup.points.reserve(base + 3 * std::size_t(n));
@@ -298,10 +299,12 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
   Text_cursor c{data.data(), data.data() + data.size()};
   const std::size_t base = soup.points.size();
   std::size_t solids = 0, facets = 0;
-  auto fail = [&](const std::string& what) {
+  auto fail = [&](const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED) {
     c.skip_blanks();
+    const bool at_end = c.p >= c.end;
     throw Input_error(name + ": line " + std::to_string(c.line) + ": " + what +
-                      (c.p >= c.end ? " (the file ends there: truncated)" : ""));
+                      (at_end && what.find("truncated") == std::string::npos ? " (the file ends there: truncated)" : ""),
+                      at_end ? Input_error_cause::TRUNCATED : cause);
   };
   std::vector<std::size_t> poly;
   for(std::string_view t = c.any_token(); !t.empty(); t = c.any_token()) {
@@ -324,17 +327,17 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
         soup.points.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
         poly.push_back(soup.points.size() - 1);
       }
-      if(t.empty()) fail("the file ends inside a facet (truncated)");
+      if(t.empty()) fail("the file ends inside a facet (truncated)", Input_error_cause::TRUNCATED);
       if(t != "endloop") fail("expected 'vertex' or 'endloop', found '" + std::string(t.substr(0, 40)) + "'");
       if(c.any_token() != "endfacet") fail("expected 'endfacet'");
       if(poly.size() < 3) fail("a facet needs at least three vertices");
       add_polygon(soup, poly, part);
       ++facets;
     }
-    if(!closed) fail("the file ends inside solid '" + sname + "' (truncated: no 'endsolid')");
+    if(!closed) fail("the file ends inside solid '" + sname + "' (truncated: no 'endsolid')", Input_error_cause::TRUNCATED);
   }
-  if(solids == 0) throw Input_error(name + ": the STL file is empty");
-  if(facets == 0) throw Input_error(name + ": the STL file has no triangle");
+  if(solids == 0) throw Input_error(name + ": the STL file is empty", Input_error_cause::EMPTY);
+  if(facets == 0) throw Input_error(name + ": the STL file has no triangle", Input_error_cause::NO_SURFACE);
   check_finite(soup.points, base, name);
 }
 
@@ -365,10 +368,12 @@ template <typename Point_3>
 void read_OFF_buffer(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
 {
   Text_cursor c{data.data(), data.data() + data.size()};
-  auto fail = [&](const std::string& what) {
+  auto fail = [&](const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED) {
     c.skip_blanks();
+    const bool at_end = c.p >= c.end;
     throw Input_error(name + ": line " + std::to_string(c.line) + ": " + what +
-                      (c.p >= c.end ? " (the file ends there: truncated)" : ""));
+                      (at_end && what.find("truncated") == std::string::npos ? " (the file ends there: truncated)" : ""),
+                      at_end ? Input_error_cause::TRUNCATED : cause);
   };
   // the next token of the data section, skipping comments and line ends
   auto next_line_start = [&]() {
@@ -380,30 +385,30 @@ void read_OFF_buffer(const std::string& data, const std::string& name, double sc
       return true;
     }
   };
-  if(!next_line_start()) throw Input_error(name + ": the file is empty");
+  if(!next_line_start()) throw Input_error(name + ": the file is empty", Input_error_cause::EMPTY);
   std::string_view kw = c.token();
   const std::size_t off = kw.find("OFF");
   if(off == std::string_view::npos || off + 3 != kw.size())
-    throw Input_error(name + ": not an OFF file (no 'OFF' header)");
+    throw Input_error(name + ": not an OFF file (no 'OFF' header)", Input_error_cause::MALFORMED);
   const std::string_view prefix = kw.substr(0, off);
   if(prefix.find('4') != std::string_view::npos || prefix.find('n') != std::string_view::npos)
-    throw Input_error(name + ": OFF variant '" + std::string(kw) + "' is not supported (3-D OFF only)");
+    throw Input_error(name + ": OFF variant '" + std::string(kw) + "' is not supported (3-D OFF only)", Input_error_cause::UNSUPPORTED);
   for(char ch : prefix)
     if(ch != 'S' && ch != 'T' && ch != 'C' && ch != 'N')
-      throw Input_error(name + ": not an OFF file (header '" + std::string(kw.substr(0, 40)) + "')");
+      throw Input_error(name + ": not an OFF file (header '" + std::string(kw.substr(0, 40)) + "')", Input_error_cause::MALFORMED);
   long long counts[3];
   int got = 0;
   for(std::string_view t = c.token(); !t.empty() && got < 3; t = c.token()) {
-    if(t == "BINARY") throw Input_error(name + ": binary OFF is not supported (convert it to ASCII OFF)");
+    if(t == "BINARY") throw Input_error(name + ": binary OFF is not supported (convert it to ASCII OFF)", Input_error_cause::UNSUPPORTED);
     if(t[0] == '#') { c.next_line(); break; }
     const auto r = std::from_chars(t.data(), t.data() + t.size(), counts[got]);
     if(r.ec != std::errc() || r.ptr != t.data() + t.size()) fail("bad OFF header: '" + std::string(t.substr(0, 40)) + "' is not a count");
     ++got;
   }
   while(got < 3) {
-    if(got == 0 || c.at_eol()) { if(!next_line_start()) fail("truncated OFF header"); }
+    if(got == 0 || c.at_eol()) { if(!next_line_start()) fail("truncated OFF header", Input_error_cause::TRUNCATED); }
     std::string_view t = c.token();
-    if(t == "BINARY") throw Input_error(name + ": binary OFF is not supported (convert it to ASCII OFF)");
+    if(t == "BINARY") throw Input_error(name + ": binary OFF is not supported (convert it to ASCII OFF)", Input_error_cause::UNSUPPORTED);
     const auto r = std::from_chars(t.data(), t.data() + t.size(), counts[got]);
     if(r.ec != std::errc() || r.ptr != t.data() + t.size()) fail("bad OFF header: '" + std::string(t.substr(0, 40)) + "' is not a count");
     ++got;
@@ -412,15 +417,15 @@ void read_OFF_buffer(const std::string& data, const std::string& name, double sc
   // every vertex takes at least 6 bytes ("0 0 0\n"), every face at least 8 ("3 0 1 2\n")
   if(counts[0] > (long long)(data.size() / 6) || counts[1] > (long long)(data.size() / 8))
     throw Input_error(name + ": the OFF header announces " + std::to_string(counts[0]) + " vertices and " +
-                      std::to_string(counts[1]) + " faces, more than the file can hold (truncated)");
-  if(counts[0] == 0) throw Input_error(name + ": the surface has no vertex");
-  if(counts[1] == 0) throw Input_error(name + ": the surface has no face");
+                      std::to_string(counts[1]) + " faces, more than the file can hold (truncated)", Input_error_cause::TRUNCATED);
+  if(counts[0] == 0) throw Input_error(name + ": the surface has no vertex", Input_error_cause::NO_SURFACE);
+  if(counts[1] == 0) throw Input_error(name + ": the surface has no face", Input_error_cause::NO_SURFACE);
   c.next_line();
   const std::size_t base = soup.points.size(), nv = std::size_t(counts[0]);
   soup.points.reserve(base + nv);
   for(std::size_t i = 0; i < nv; ++i) {
     if(!next_line_start()) throw Input_error(name + ": the file ends after " + std::to_string(i) + " of " +
-                                             std::to_string(nv) + " vertices (truncated)");
+                                             std::to_string(nv) + " vertices (truncated)", Input_error_cause::TRUNCATED);
     double x[3];
     for(int k = 0; k < 3; ++k)
       if(!parse_double(c.token(), x[k])) fail("a vertex needs three numbers");
@@ -432,7 +437,7 @@ void read_OFF_buffer(const std::string& data, const std::string& name, double sc
   std::vector<std::size_t> poly;
   for(long long f = 0; f < counts[1]; ++f) {
     if(!next_line_start()) throw Input_error(name + ": the file ends after " + std::to_string(f) + " of " +
-                                             std::to_string(counts[1]) + " faces (truncated)");
+                                             std::to_string(counts[1]) + " faces (truncated)", Input_error_cause::TRUNCATED);
     long long n = 0;
     const std::string_view t = c.token();
     const auto r = std::from_chars(t.data(), t.data() + t.size(), n);
@@ -447,7 +452,8 @@ void read_OFF_buffer(const std::string& data, const std::string& name, double sc
       if(ti.empty()) fail("a face has fewer indices than it announces");
       if(ri.ec != std::errc() || ri.ptr != ti.data() + ti.size()) fail("'" + std::string(ti.substr(0, 40)) + "' is not a vertex index");
       if(id < 0 || id >= (long long)nv)
-        fail("a face refers to vertex " + std::to_string(id) + " but the file has " + std::to_string(nv) + " vertices");
+        fail("a face refers to vertex " + std::to_string(id) + " but the file has " + std::to_string(nv) + " vertices",
+             Input_error_cause::BAD_INDEX);
       poly.push_back(base + std::size_t(id));
     }
     add_polygon(soup, poly, part);
@@ -492,13 +498,15 @@ template <typename Point_3>
 void read_PLY_buffer(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
 {
   Text_cursor c{data.data(), data.data() + data.size()};
-  auto fail = [&](const std::string& what) { throw Input_error(name + ": " + what); };
+  auto fail = [&](const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED) {
+    throw Input_error(name + ": " + what, cause);
+  };
   if(c.token() != "ply") fail("not a PLY file (no 'ply' header)");
   c.next_line();
   int format = -1;   // 0 ascii, 1 little endian, 2 big endian
   std::vector<Ply_element> elements;
   for(;;) {
-    if(c.p >= c.end) fail("truncated PLY header (no 'end_header')");
+    if(c.p >= c.end) fail("truncated PLY header (no 'end_header')", Input_error_cause::TRUNCATED);
     const std::string_view kw = c.token();
     if(kw == "end_header") { c.next_line(); break; }
     if(kw == "format") {
@@ -568,7 +576,7 @@ void read_PLY_buffer(const std::string& data, const std::string& name, double sc
   for(const Ply_element& e : elements) {
     const std::size_t remaining = std::size_t(c.end - (format == 0 ? c.p : bp));
     if(e.count > remaining)   // every record takes at least one byte
-      fail("element '" + e.name + "' announces " + std::to_string(e.count) + " records, more than the file holds (truncated)");
+      fail("element '" + e.name + "' announces " + std::to_string(e.count) + " records, more than the file holds (truncated)", Input_error_cause::TRUNCATED);
     int ix = -1, iy = -1, iz = -1, iface = -1;
     for(std::size_t k = 0; k < e.properties.size(); ++k) {
       const auto& p = e.properties[k];
@@ -587,17 +595,17 @@ void read_PLY_buffer(const std::string& data, const std::string& name, double sc
         const Ply_property& p = e.properties[k];
         double v = 0;
         if(!p.is_list) {
-          if(!read_value(p.type, p.is_signed, v)) fail("the file ends inside element '" + e.name + "' (truncated)");
+          if(!read_value(p.type, p.is_signed, v)) fail("the file ends inside element '" + e.name + "' (truncated)", Input_error_cause::TRUNCATED);
           if(int(k) == ix) xyz[0] = v; else if(int(k) == iy) xyz[1] = v; else if(int(k) == iz) xyz[2] = v;
           continue;
         }
         double nd = 0;
-        if(!read_value(p.count_type, p.count_signed, nd)) fail("the file ends inside element '" + e.name + "' (truncated)");
+        if(!read_value(p.count_type, p.count_signed, nd)) fail("the file ends inside element '" + e.name + "' (truncated)", Input_error_cause::TRUNCATED);
         if(!(nd >= 0) || nd != std::floor(nd) || nd > double(data.size())) fail("bad list length in element '" + e.name + "'");
         const std::size_t n = std::size_t(nd);
         if(int(k) == iface) poly.clear();
         for(std::size_t i = 0; i < n; ++i) {
-          if(!read_value(p.type, p.is_signed, v)) fail("the file ends inside element '" + e.name + "' (truncated)");
+          if(!read_value(p.type, p.is_signed, v)) fail("the file ends inside element '" + e.name + "' (truncated)", Input_error_cause::TRUNCATED);
           if(int(k) == iface) {
             if(!(v >= 0) || v != std::floor(v) || v >= 4294967295.0) fail("a face has a bad vertex index");
             poly.push_back(std::size_t(v));
@@ -611,14 +619,14 @@ void read_PLY_buffer(const std::string& data, const std::string& name, double sc
       if(is_vertex) soup.points.push_back(Point_3(xyz[0] * scale, xyz[1] * scale, xyz[2] * scale));
     }
   }
-  if(nv == 0) fail("the surface has no vertex");
-  if(!has_faces || faces.empty()) fail("the surface has no face");
+  if(nv == 0) fail("the surface has no vertex", Input_error_cause::NO_SURFACE);
+  if(!has_faces || faces.empty()) fail("the surface has no face", Input_error_cause::NO_SURFACE);
   check_finite(soup.points, base, name);
   for(auto& f : faces) {
     for(std::size_t& id : f.first) {
       if(id >= nv)
         fail("face " + std::to_string(f.second) + " refers to vertex " + std::to_string(id) + " but the file has " +
-             std::to_string(nv) + " vertices");
+             std::to_string(nv) + " vertices", Input_error_cause::BAD_INDEX);
       id += base;
     }
     add_polygon(soup, f.first, part);
@@ -641,8 +649,8 @@ void read_surface_buffer(const std::string& data, const std::string& name, const
                          Surface_soup<Point_3>& soup, double scale = 1.0)
 {
   if(!(std::isfinite(scale) && scale > 0))
-    throw Input_error(name + ": the scale factor must be a positive number");
-  if(data.empty()) throw Input_error(name + ": the file is empty");
+    throw Input_error(name + ": the scale factor must be a positive number", Input_error_cause::BAD_PARAMETER);
+  if(data.empty()) throw Input_error(name + ": the file is empty", Input_error_cause::EMPTY);
   if(internal::is_gzip(data))
     return read_surface_buffer(internal::gunzip(data, name), name, format, soup, scale);
   // a failed read leaves `soup` as it was
@@ -654,14 +662,14 @@ void read_surface_buffer(const std::string& data, const std::string& name, const
     else if(format == "off") internal::read_OFF_buffer(data, name, scale, soup);
     else if(format == "ply") internal::read_PLY_buffer(data, name, scale, soup);
     else throw Input_error(name + ": unknown surface format '" + format + "' (expected .off, .obj, .stl or .ply, "
-                           "optionally gzip-compressed)");
+                           "optionally gzip-compressed)", Input_error_cause::TRUNCATED);
   } catch(...) {
     soup.points.resize(np); soup.triangles.resize(nt); soup.part_of_triangle.resize(nt);
     soup.part_names.resize(nn); soup.polygons = npoly;
     throw;
   }
   if(soup.points.size() > std::size_t(UINT32_MAX))
-    throw Input_error(name + ": more than 2^32 points are not supported");
+    throw Input_error(name + ": more than 2^32 points are not supported", Input_error_cause::UNSUPPORTED);
   soup.files.push_back(name);
 }
 
@@ -679,11 +687,11 @@ void read_surface(const std::string& filename, Surface_soup<Point_3>& soup, doub
   const std::string format = internal::format_of(filename);
   if(format != "off" && format != "obj" && format != "stl" && format != "ply")
     throw Input_error(filename + ": unknown surface format '" + format + "' (expected .off, .obj, .stl or .ply, "
-                      "optionally followed by .gz)");
+                      "optionally followed by .gz)", Input_error_cause::UNSUPPORTED);
   std::ifstream in(filename, std::ios::binary);
-  if(!in) throw Input_error(filename + ": cannot open the file for reading");
+  if(!in) throw Input_error(filename + ": cannot open the file for reading", Input_error_cause::UNREADABLE);
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if(in.bad()) throw Input_error(filename + ": read error");
+  if(in.bad()) throw Input_error(filename + ": read error", Input_error_cause::UNREADABLE);
   read_surface_buffer(data, filename, format, soup, scale);
 }
 

@@ -159,15 +159,15 @@ public:
   {
     const FT size = m_criteria.initial_size();
     if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
-      throw Input_error("the cell size must be a positive number");
+      throw Input_error("the cell size must be a positive number", Input_error_cause::BAD_PARAMETER);
     m_D = m_criteria.max_level();
-    if(m_D < 0 || m_D > 20) throw Input_error("the maximum level must be in [0, 20]");
+    if(m_D < 0 || m_D > 20) throw Input_error("the maximum level must be in [0, 20]", Input_error_cause::BAD_PARAMETER);
     for(int a = 0; a < 3; ++a) {
       m_lo[a] = m_box.min(a); m_hi[a] = m_box.max(a);
       const double L = m_hi[a] - m_lo[a];
-      if(!(L > 0) || !std::isfinite(L)) throw Input_error("the meshing box is empty or not finite");
+      if(!(L > 0) || !std::isfinite(L)) throw Input_error("the meshing box is empty or not finite", Input_error_cause::EMPTY);
       const double n = std::ceil(L / CGAL::to_double(size) * (1 - 1e-12));
-      if(n > double(1u << 20)) throw Input_error("the cell size is too small for the box (more than 2^20 cells per axis)");
+      if(n > double(1u << 20)) throw Input_error("the cell size is too small for the box (more than 2^20 cells per axis)", Input_error_cause::BAD_PARAMETER);
       m_n[a] = std::uint32_t((std::max)(1.0, n));
     }
     // coordinates at the finest level must fit in KEY_BITS bits (with one spare for neighbours)
@@ -180,7 +180,7 @@ public:
   void init_grid()
   {
     const std::size_t roots = std::size_t(m_n[0]) * m_n[1] * m_n[2];
-    if(roots > 200000000u) throw Input_error("the initial grid would have more than 2e8 cells; increase the cell size");
+    if(roots > 200000000u) throw Input_error("the initial grid would have more than 2e8 cells; increase the cell size", Input_error_cause::BAD_PARAMETER);
     m_nodes.clear(); m_nodes.resize(roots);
     m_lists.clear(); m_lists.emplace_back();   // slot 0 = no list
     m_by_level.assign(m_D + 2, {});
@@ -308,7 +308,7 @@ public:
   void split(std::uint32_t id)
   {
     const std::uint32_t first = std::uint32_t(m_nodes.size());
-    if(m_nodes.size() + 8 >= std::size_t(NONE)) throw Input_error("too many cells (more than 4e9 nodes)");
+    if(m_nodes.size() + 8 >= std::size_t(NONE)) throw Input_error("too many cells (more than 4e9 nodes)", Input_error_cause::BAD_PARAMETER);
     const Node parent = m_nodes[id];
     m_nodes[id].child = first;
     m_nodes.resize(m_nodes.size() + 8);
@@ -425,13 +425,13 @@ public:
         std::ostringstream os;
         os << "the region seed (" << s[0] << ", " << s[1] << ", " << s[2] << ") is outside the meshing box ("
            << m_lo[0] << ", " << m_lo[1] << ", " << m_lo[2] << ") - (" << m_hi[0] << ", " << m_hi[1] << ", " << m_hi[2] << ")";
-        throw Input_error(os.str());
+        throw Input_error(os.str(), Input_error_cause::BAD_SEED);
       }
     if(m_domain.is_inside(p)) {
       std::ostringstream os;
       os << "the region seed (" << s[0] << ", " << s[1] << ", " << s[2] << ") is inside a body of the surface; "
          << "it must lie in the region to mesh (the fluid around the bodies)";
-      throw Input_error(os.str());
+      throw Input_error(os.str(), Input_error_cause::BAD_SEED);
     }
   }
 
@@ -483,7 +483,7 @@ public:
         os << "the region seed (" << CGAL::to_double(seed->x()) << ", " << CGAL::to_double(seed->y()) << ", "
            << CGAL::to_double(seed->z()) << ") lies in a cell cut by the surface; move it farther than " << h
            << " from the surface";
-        throw Input_error(os.str());
+        throw Input_error(os.str(), Input_error_cause::BAD_SEED);
       }
       const int comp = m_component[s];
       for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
