@@ -9,7 +9,8 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF >/dev/null
 cmake --build build -j"$jobs" --target hexmesh
 mkdir -p out
 ./build/tools/hexmesh/hexmesh examples/Hex_meshing_3/data/eight.off \
-    -o out/eight.vtu -o out/eight_case --report out/eight_report.json \
+    -o out/eight.vtu -o out/eight_case -o out/eight.msh \
+    --report out/eight_report.json --report out/eight_report.html \
     --size 0.1 --surface-size 0.0125 --force
 export WM_PROJECT_DIR=/usr/share/openfoam
 if command -v checkMesh >/dev/null; then
@@ -17,6 +18,8 @@ if command -v checkMesh >/dev/null; then
 fi
 echo
 echo "Outputs:"
-echo "  $(pwd)/out/eight.vtu           hexahedral mesh for ParaView (cell data: level, scaled_jacobian)"
+echo "  $(pwd)/out/eight.vtu           hexahedral mesh for ParaView (cell data: level, scaled_jacobian, patch)"
 echo "  $(pwd)/out/eight_case/         OpenFOAM case (constant/polyMesh)"
-echo "  $(pwd)/out/eight_report.json   quality report (counts, seconds, memory, quality)"
+echo "  $(pwd)/out/eight.msh           Gmsh 4.1 mesh (physical groups = patches)"
+echo "  $(pwd)/out/eight_report.json   report (repairs, counts, seconds, memory, quality, histograms)"
+echo "  $(pwd)/out/eight_report.html   the same for a browser, with histograms and slices of the mesh"
