@@ -502,6 +502,10 @@ void test_dirty_input()
     HM::IO::read_surface_buffer("solid alpha\n" + tri + "endsolid alpha\nsolid beta\n" + tri + tri + "endsolid beta\n",
                                 "b.stl", "stl", s);
     assert(s.part_names.size() == 2 && s.part_names[1] == "beta" && s.triangles.size() == 3);
+    Soup su;   // capitals, CRLF line ends
+    HM::IO::read_surface_buffer("SOLID UP\r\nFACET NORMAL 0 0 1\r\nOUTER LOOP\r\nVERTEX 0 0 0\r\nVERTEX 1 0 0\r\n"
+                                "VERTEX 0 1 0\r\nENDLOOP\r\nENDFACET\r\nENDSOLID UP\r\n", "u.stl", "stl", su);
+    assert(su.triangles.size() == 1 && su.part_names[0] == "UP");
     assert((s.part_of_triangle == std::vector<int>{0, 1, 1}));
     std::string bin(80, 'x');
     const std::uint32_t n = 1;

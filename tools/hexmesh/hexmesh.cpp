@@ -358,6 +358,11 @@ int main(int argc, char** argv)
       std::cerr << "hexmesh: warning: refinement stopped before exceeding --max-cells " << max_cells
                 << "; the mesh is valid but coarser than the sizes asked for\n";
     for(std::size_t i = 0; i < leaks.size(); ++i) {
+      if(i == 10) {
+        std::fprintf(stderr, "hexmesh: %s: ... and %zu more leaks (all are in the report)\n", strict ? "error" : "warning",
+                     leaks.size() - 10);
+        break;
+      }
       const HM::Region_leak& l = leaks[i];
       std::fprintf(stderr, "hexmesh: %s: leak %zu: the region reached %zu cells (volume %.6g) inside a body, through "
                            "%zu faces (area %.6g) in the box (%.6g, %.6g, %.6g) - (%.6g, %.6g, %.6g): a hole in the "

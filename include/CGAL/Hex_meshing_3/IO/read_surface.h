@@ -153,6 +153,15 @@ struct Text_cursor
   }
 };
 
+/// case-insensitive keyword comparison (some exporters write STL keywords in capitals)
+inline bool ieq(std::string_view a, std::string_view b)
+{
+  if(a.size() != b.size()) return false;
+  for(std::size_t i = 0; i < a.size(); ++i)
+    if(std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i]))) return false;
+  return true;
+}
+
 inline bool parse_double(std::string_view s, double& v)
 {
   if(s.empty()) return false;
@@ -308,19 +317,19 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
   };
   std::vector<std::size_t> poly;
   for(std::string_view t = c.any_token(); !t.empty(); t = c.any_token()) {
-    if(t != "solid") fail("expected 'solid', found '" + std::string(t.substr(0, 40)) + "'");
+    if(!ieq(t, "solid")) fail("expected 'solid', found '" + std::string(t.substr(0, 40)) + "'");
     std::string sname = c.rest_of_line();
     if(sname.empty()) sname = stem_of(name);
     const int part = soup.part(sname);
     ++solids;
     bool closed = false;
     for(t = c.any_token(); !t.empty(); t = c.any_token()) {
-      if(t == "endsolid") { c.rest_of_line(); closed = true; break; }
-      if(t != "facet") fail("expected 'facet' or 'endsolid', found '" + std::string(t.substr(0, 40)) + "'");
+      if(ieq(t, "endsolid")) { c.rest_of_line(); closed = true; break; }
+      if(!ieq(t, "facet")) fail("expected 'facet' or 'endsolid', found '" + std::string(t.substr(0, 40)) + "'");
       c.rest_of_line();   // "normal nx ny nz": recomputed from the vertices
-      if(c.any_token() != "outer" || c.token() != "loop") fail("expected 'outer loop'");
+      if(!ieq(c.any_token(), "outer") || !ieq(c.token(), "loop")) fail("expected 'outer loop'");
       poly.clear();
-      for(t = c.any_token(); t == "vertex"; t = c.any_token()) {
+      for(t = c.any_token(); ieq(t, "vertex"); t = c.any_token()) {
         double x[3];
         for(int k = 0; k < 3; ++k)
           if(!parse_double(c.token(), x[k])) fail("a vertex needs three numbers");
@@ -328,8 +337,8 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
         poly.push_back(soup.points.size() - 1);
       }
       if(t.empty()) fail("the file ends inside a facet (truncated)", Input_error_cause::TRUNCATED);
-      if(t != "endloop") fail("expected 'vertex' or 'endloop', found '" + std::string(t.substr(0, 40)) + "'");
-      if(c.any_token() != "endfacet") fail("expected 'endfacet'");
+      if(!ieq(t, "endloop")) fail("expected 'vertex' or 'endloop', found '" + std::string(t.substr(0, 40)) + "'");
+      if(!ieq(c.any_token(), "endfacet")) fail("expected 'endfacet'");
       if(poly.size() < 3) fail("a facet needs at least three vertices");
       add_polygon(soup, poly, part);
       ++facets;
@@ -352,7 +361,7 @@ void read_STL_buffer(const std::string& data, const std::string& name, double sc
   }
   std::size_t i = 0;
   while(i < data.size() && std::isspace(static_cast<unsigned char>(data[i]))) ++i;
-  if(data.compare(i, 5, "solid") == 0 && data.find('\0') == std::string::npos)
+  if(i + 5 <= data.size() && ieq(std::string_view(data).substr(i, 5), "solid") && data.find('\0') == std::string::npos)
     return read_STL_ascii(data, name, scale, soup);
   read_STL_binary(data, name, scale, soup);   // throws with the size mismatch
 }
