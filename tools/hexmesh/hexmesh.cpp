@@ -315,7 +315,8 @@ int main(int argc, char** argv)
     note(sum.reversed_duplicates, "reversed duplicate triangles removed");
     note(sum.sheet_triangles, "triangles kept as two-sided zero-thickness sheets");
     note(sum.reoriented_triangles, "triangles reoriented");
-    note(sum.internal_triangles, "triangles inside the volume (overlapping parts) left out of the boundary");
+    note(sum.internal_triangles, "triangles wholly or partly inside the volume (overlapping parts) left out of the boundary");
+    note(sum.split_triangles, "pieces of the partly inside ones kept");
     if(!quiet) {
       std::cerr << "hexmesh: read " << inputs.size() << " file" << (inputs.size() > 1 ? "s" : "") << ": "
                 << read_polygons << " polygons, " << read_points << " points, " << domain.patch_names().size()
@@ -449,7 +450,7 @@ int main(int argc, char** argv)
       j["repair"] = {{"merged_points", sum.merged_points}, {"degenerate_triangles", sum.degenerate_triangles},
                      {"duplicate_triangles", sum.duplicate_triangles}, {"reversed_duplicates", sum.reversed_duplicates},
                      {"sheet_triangles", sum.sheet_triangles}, {"reoriented_triangles", sum.reoriented_triangles},
-                     {"internal_triangles", sum.internal_triangles}};
+                     {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles}};
       nlohmann::ordered_json jl = nlohmann::ordered_json::array();
       for(const HM::Region_leak& l : leaks) {
         auto bj = [](const CGAL::Bbox_3& b) { return nlohmann::ordered_json{b.xmin(), b.ymin(), b.zmin(), b.xmax(), b.ymax(), b.zmax()}; };
