@@ -93,6 +93,11 @@ def cylinder(z0, z1, r=0.5, n=64):
     return verts, tris
 
 
+def box_quads_obj(lo, hi, group):
+    v, q = box_quads(*lo, *hi)
+    return v, [(group, [t for quad in q.values() for t in ((quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3]))])]
+
+
 def box_with_hole(path):
     """the surface of [0,1]^3 whose top face has a square hole [0.3,0.7]^2 (an open shell)"""
     g = [0, 0.3, 0.7, 1]
@@ -354,6 +359,81 @@ def main():
           f"status {j['status']}, warning printed")
     check(j["grid"]["leaf_cells"] <= 3000 * 1.3 and j["quality"]["scaled_jacobian"]["min"] > 0,
           f"grid of {j['grid']['leaf_cells']} leaves (limit 3000, balance may add a few), valid")
+
+    # 8a. regressions found in review
+    print("[review regressions]")
+    R = os.path.join(W, "review")
+    os.makedirs(R)
+    def box_tris(lo, hi, inward=False):
+        v, q = box_quads(*lo, *hi)
+        tris = []
+        for quad in q.values():
+            t = [(quad[0], quad[1], quad[2]), (quad[0], quad[2], quad[3])]
+            tris += [(a, c, b) for a, b, c in t] if inward else t
+        return v, tris
+    def write_off(path, parts):
+        verts, faces = [], []
+        for v, t in parts:
+            faces += [tuple(i + len(verts) for i in f) for f in t]
+            verts += v
+        with open(path, "w") as f:
+            f.write(f"OFF\n{len(verts)} {len(faces)} 0\n")
+            f.writelines("%.17g %.17g %.17g\n" % tuple(p) for p in verts)
+            f.writelines("3 %d %d %d\n" % t for t in faces)
+    outer, inner = box_tris((0, 0, 0), (4, 4, 4)), box_tris((1, 1, 1), (3, 3, 3), inward=True)
+    stray = ([(10, 10, 10), (10.5, 10, 10), (10, 10.5, 10)], [(0, 1, 2)])
+    write_off(os.path.join(R, "hollow.off"), [outer, inner])
+    write_off(os.path.join(R, "hollow_open.off"), [outer, inner, stray])
+    vols = []
+    for n in ("hollow", "hollow_open"):
+        rep = os.path.join(R, n + ".json")
+        hexmesh(ctx, [os.path.join(R, n + ".off")], [os.path.join(R, n + ".vtu")],
+                ["-q", "--box", "-1,-1,-1,5,5,5", "--size", "0.5", "--surface-size", "0.25"], rep)
+        vols.append(json.load(open(rep))["volume"])
+    check(abs(vols[0] - vols[1]) < 1e-9 and vols[0] < 3.5 ** 3 - 2 ** 3,
+          f"a cavity stays a cavity with the winding number as with the exact test (inward shell kept inward): {vols}")
+    v, t = box_tris((0, 0, 0), (1, 1, 1))
+    write_off(os.path.join(R, "double.off"), [(v, t + [(a, c, b) for a, b, c in t])])
+    rep = os.path.join(R, "double.json")
+    hexmesh(ctx, [os.path.join(R, "double.off")], [os.path.join(R, "double.vtu")], ["-q", "--size", "0.25"], rep)
+    j = json.load(open(rep))
+    check(j["repair"]["sheet_triangles"] == 0 and abs(j["volume"] - 0.875 ** 3) < 1e-12,
+          f"a closed surface exported double-sided is a solid, not a sheet (volume {j['volume']})")
+    # a hollow tank, each shell with a hole: the cavity, reached only through the wall, is cut off
+    ov, ot = box_tris((0, 0, 0), (4, 4, 4))
+    iv, it = box_tris((1, 1, 1), (3, 3, 3), inward=True)
+    # holes in the outer top and in the inner bottom: the cavity is reached only through the wall
+    write_off(os.path.join(R, "tank.off"), [(ov, ot[:-1]), (iv, it[:8] + it[9:])])
+    case = os.path.join(R, "tank_case")
+    rep = os.path.join(R, "tank.json")
+    r = hexmesh(ctx, [os.path.join(R, "tank.off")], [case], ["--box", "-1,-1,-1,5,5,5", "--size", "0.5",
+                                                           "--surface-size", "0.25", "--region", "seed:-0.9,-0.9,-0.9"], rep)
+    j = json.load(open(rep))
+    cut = sum(l["cut_off_cells"] for l in j["leaks"])
+    check(len(j["leaks"]) >= 1 and cut > 0 and "reachable only through it" in r.stderr,
+          f"tank: {len(j['leaks'])} leak(s), {cut} cavity cells cut off with them")
+    rc = run(["checkMesh", "-case", case], env=dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam"))
+    check("Number of regions: 1 " in rc.stdout or "Number of regions: 1\n" in rc.stdout,
+          "tank: the mesh is one region (checkMesh)")
+    # patch names: regex applied once, no empty names, unique names, repeated file names
+    rep = os.path.join(R, "names.json")
+    hexmesh(ctx, [os.path.join(D, "cube.off")], [os.path.join(R, "names.vtu")], ["-q", "--patch-name", "(.*)=w_$1"], rep)
+    names = [p["name"] for p in json.load(open(rep))["patches"]]
+    check(names == ["w_xmin", "w_xmax", "w_ymin", "w_ymax", "w_zmin", "w_zmax", "w_cube"], f"--patch-name '(.*)=w_$1': {names}")
+    r = run([args.hexmesh, os.path.join(D, "cube.off"), "-o", os.path.join(R, "empty_name.vtu"), "--patch-name", "cube=$2"])
+    check(r.returncode == 1 and "empty name" in r.stderr, f"an empty patch name is a usage error (exit {r.returncode})")
+    write_obj(os.path.join(R, "xmin.obj"), *box_quads_obj((0, 0, 0), (1, 1, 1), "xmin"))
+    os.makedirs(os.path.join(R, "a")); os.makedirs(os.path.join(R, "b"))
+    write_off(os.path.join(R, "a", "part.off"), [box_tris((0, 0, 0), (1, 1, 1))])
+    write_off(os.path.join(R, "b", "part.off"), [box_tris((2, 0, 0), (3, 1, 1))])
+    rep = os.path.join(R, "unique.json")
+    case = os.path.join(R, "unique_case")
+    hexmesh(ctx, [os.path.join(R, "xmin.obj"), os.path.join(R, "a", "part.off"), os.path.join(R, "b", "part.off")], [case],
+            ["-q", "--size", "0.25"], rep)
+    names = [p["name"] for p in json.load(open(rep))["patches"]]
+    check(names[6:] == ["xmin_2", "part", "part_2"], f"unique patch names: group 'xmin' and two files part.off -> {names[6:]}")
+    r = run([args.hexmesh, os.path.join(D, "cube.off"), "-o", os.path.join(R, "x" * 300 + ".vtu")])
+    check(r.returncode in (1, 3) and r.stderr.startswith("hexmesh: "), f"an impossible output name: exit {r.returncode}, no crash")
 
     # 8. reports: JSON with histograms and worst cells; self-contained HTML with SVG
     print("[reports]")

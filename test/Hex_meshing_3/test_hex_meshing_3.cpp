@@ -492,6 +492,9 @@ void test_dirty_input()
     assert((s.part_of_triangle == std::vector<int>{0, 0, 1}));
     assert(s.triangles[2] == (std::array<std::uint32_t, 3>{{0, 2, 1}}));
     assert(s.points[2] == Point_3(2, 2, 0));   // scaled
+    expect_input_error([] { Soup t; HM::IO::read_surface_buffer("v 0 0 0\nv 1 0 0\nf -9223372036854775808 1 2\nv 0 1 0\n",
+                                                                "h.obj", "obj", t); },
+                       "h.obj: line 3", HM::Input_error_cause::BAD_INDEX);
     std::cout << "  OBJ: groups 'base plate', 'lid'; relative indices; scale\n";
   }
   // STL: ASCII with two solids, binary, and the same read from a gzip stream

@@ -29,6 +29,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -272,15 +273,16 @@ int main(int argc, char** argv)
     std::vector<std::string> files = reports;
     for(const std::string& o : outputs)
       files.push_back(output_kind(o) == Output_kind::OPENFOAM ? (fs::path(o) / "constant" / "polyMesh").string() : o);
+    auto exists = [](const std::string& p) { std::error_code ec; return fs::exists(p, ec); };
     for(const std::string& f : files) {
       for(const std::string& in : inputs) {
         std::error_code ec;
-        if(fs::exists(in) && fs::exists(f) && fs::equivalent(in, f, ec)) {
+        if(exists(in) && exists(f) && fs::equivalent(in, f, ec)) {
           std::cerr << "hexmesh: " << f << " is an input; it is never overwritten\n";
           return OUTPUT;
         }
       }
-      if(fs::exists(f) && !force) {
+      if(exists(f) && !force) {
         std::cerr << "hexmesh: " << f << " exists; use --force to overwrite it\n";
         return OUTPUT;
       }
@@ -367,9 +369,10 @@ int main(int argc, char** argv)
       const HM::Region_leak& l = leaks[i];
       std::fprintf(stderr, "hexmesh: %s: leak %zu: the region reached %zu cells (volume %.6g) inside a body, through "
                            "%zu faces (area %.6g) in the box (%.6g, %.6g, %.6g) - (%.6g, %.6g, %.6g): a hole in the "
-                           "surface there; %s\n",
+                           "surface there%s; %s\n",
                    strict ? "error" : "warning", i + 1, l.cells, l.volume, l.passage_faces, l.passage_area,
                    l.passage.xmin(), l.passage.ymin(), l.passage.zmin(), l.passage.xmax(), l.passage.ymax(), l.passage.zmax(),
+                   l.cut_off_cells ? (" (and " + std::to_string(l.cut_off_cells) + " cells reachable only through it)").c_str() : "",
                    strict ? "nothing is written (--strict)" : "these cells are not meshed (the winding number decides)");
     }
     if(strict && !leaks.empty()) return INPUT;
@@ -381,12 +384,33 @@ int main(int argc, char** argv)
     }
 
     // patches: rename / merge, then types
-    if(!name_rules.empty())
-      mesh.rename_patches([&](const std::string& n) {
+    if(!name_rules.empty()) {
+      auto rename = [&](const std::string& n) {
+        std::smatch m;
         for(const Rule& r : name_rules)
-          if(std::regex_match(n, r.re)) return std::regex_replace(n, r.re, r.value);
+          if(std::regex_match(n, m, r.re)) return m.format(r.value);
         return n;
-      });
+      };
+      std::vector<std::pair<std::string, std::vector<std::string>>> merged;   // new name -> old types
+      for(std::size_t p = 0; p < mesh.patch_names.size(); ++p) {
+        const std::string n = rename(mesh.patch_names[p]);
+        if(n.empty()) {
+          std::cerr << "hexmesh: --patch-name: patch '" << mesh.patch_names[p] << "' would get an empty name\n";
+          return USAGE;
+        }
+        auto it = std::find_if(merged.begin(), merged.end(), [&](const auto& x) { return x.first == n; });
+        if(it == merged.end()) merged.push_back({n, {mesh.patch_type(p)}});
+        else it->second.push_back(mesh.patch_type(p));
+      }
+      for(const auto& m : merged)
+        for(const std::string& t : m.second)
+          if(t != m.second.front()) {
+            std::cerr << "hexmesh: warning: patch '" << m.first << "' merges patches of types " << m.second.front()
+                      << " and " << t << "; it gets type " << m.second.front() << " (choose with --patch-type)\n";
+            break;
+          }
+      mesh.rename_patches(rename);
+    }
     mesh.patch_types.resize(mesh.patch_names.size());
     for(std::size_t p = 0; p < mesh.patch_names.size(); ++p) {
       mesh.patch_types[p] = mesh.patch_type(p);
@@ -456,7 +480,8 @@ int main(int argc, char** argv)
         auto bj = [](const CGAL::Bbox_3& b) { return nlohmann::ordered_json{b.xmin(), b.ymin(), b.zmin(), b.xmax(), b.ymax(), b.zmax()}; };
         jl.push_back({{"cells", l.cells}, {"volume", l.volume}, {"bbox", bj(l.bbox)}, {"passage", bj(l.passage)},
                       {"passage_faces", l.passage_faces}, {"passage_area", l.passage_area},
-                      {"max_winding_number", l.max_winding_number}});
+                      {"max_winding_number", l.max_winding_number}, {"cut_off_cells", l.cut_off_cells},
+                      {"cut_off_volume", l.cut_off_volume}});
       }
       j["leaks"] = jl;
       j["status"] = HM::status_name(status);
@@ -506,6 +531,12 @@ int main(int argc, char** argv)
     return INPUT;
   } catch(const std::logic_error& e) {
     std::cerr << "hexmesh: internal error: " << e.what() << "\n";
+    return INVALID;
+  } catch(const fs::filesystem_error& e) {
+    std::cerr << "hexmesh: " << e.what() << "\n";
+    return OUTPUT;
+  } catch(const std::exception& e) {
+    std::cerr << "hexmesh: error: " << e.what() << "\n";
     return INVALID;
   }
 }

@@ -109,6 +109,8 @@ struct Region_leak
   std::size_t passage_faces = 0;    ///< number of those faces
   double passage_area = 0;          ///< their area
   double max_winding_number = 0;    ///< the largest winding number at a leak cell's centre
+  std::size_t cut_off_cells = 0;    ///< region cells reachable from the seed only through this leak (removed too)
+  double cut_off_volume = 0;        ///< their volume
 };
 
 } // namespace Hex_meshing_3

@@ -25,6 +25,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/boost/graph/helpers.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <array>
@@ -245,7 +246,7 @@ private:
         throw Input_error("surface: a vertex has a coordinate that is not a finite number", Input_error_cause::NON_FINITE);
     for(const Triangle_indices& t : triangles)
       for(std::uint32_t v : t)
-        if(v >= points.size()) throw Input_error("surface: a triangle refers to a missing vertex", Input_error_cause::MALFORMED);
+        if(v >= points.size()) throw Input_error("surface: a triangle refers to a missing vertex", Input_error_cause::BAD_INDEX);
 
     // merge exactly coincident points (soups from STL have one point per triangle corner)
     std::vector<std::vector<std::size_t>> polys(triangles.size());
@@ -414,11 +415,20 @@ private:
       split(a, ab, ca, depth + 1, f); split(ab, b, bc, depth + 1, f);
       split(ca, bc, c, depth + 1, f); split(ab, bc, ca, depth + 1, f);
     };
+    // candidates: triangles whose box meets the box of another component (box intersection, not n x C)
+    std::vector<char> candidate(n, 0);
+    {
+      typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t> Box;
+      std::vector<Box> tb, cb;
+      tb.reserve(n);
+      for(std::size_t f = 0; f < n; ++f) tb.push_back(Box(m_tri_bboxes[f], f));
+      for(std::size_t c = 0; c < comp_box.size(); ++c) cb.push_back(Box(comp_box[c], c));
+      CGAL::box_intersection_d(tb.begin(), tb.end(), cb.begin(), cb.end(), [&](const Box& t, const Box& c) {
+        if(int(c.info()) != comp[t.info()]) candidate[t.info()] = 1;
+      });
+    }
     for(std::size_t f = 0; f < n; ++f) {
-      bool candidate = false;
-      for(std::size_t c = 0; c < comp_box.size() && !candidate; ++c)
-        candidate = int(c) != comp[f] && CGAL::do_overlap(comp_box[c], m_tri_bboxes[f]);
-      if(!candidate) continue;
+      if(!candidate[f]) continue;
       const V a = internal_vec(m_points[m_indices[f][0]]), b = internal_vec(m_points[m_indices[f][1]]),
               c = internal_vec(m_points[m_indices[f][2]]);
       const int k = classify(a, b, c);
@@ -462,13 +472,15 @@ private:
    *    duplicate, a copy with the opposite orientation a reversed duplicate;
    * 2. faces that came with a reversed copy are grouped by shared edges. A group whose free edges
    *    each meet exactly one other face is a patch of a larger surface (the reversed copies were
-   *    spurious): its faces stay one-sided and get their neighbours' orientation in step 3. Any
-   *    other group (it has an edge of no other face, or meets a non-manifold edge, or is closed)
-   *    is a zero-thickness sheet, as the windshield of the motorBike: kept, two-sided, excluded
-   *    from the winding number (it bounds no volume) but still cut by and blocking the grid;
+   *    spurious), and a group without free edge is a closed surface exported double-sided (a
+   *    solid): their faces stay one-sided and are oriented in step 3. Any other group (it has an
+   *    edge of no other face, or meets a non-manifold edge) is a zero-thickness sheet, as the
+   *    windshield of the motorBike: kept, two-sided, excluded from the winding number (it bounds
+   *    no volume) but still cut by and blocking the grid;
    * 3. the one-sided faces are oriented consistently (CGAL's orient_polygon_soup); then each
-   *    edge-connected component is oriented outward if it is closed (positive signed volume), and
-   *    otherwise keeps the orientation most of its input faces had.
+   *    edge-connected component that is closed is oriented by its nesting depth among the closed
+   *    components (outward, positive signed volume, at even depth; inward at odd depth: the wall
+   *    of a cavity), and each open one keeps the orientation most of its input faces had.
    */
   void repair(std::vector<Triangle_indices>& tris, std::vector<int>& parts)
   {
@@ -556,7 +568,7 @@ private:
           if(first == UINT32_MAX) first = f; else unite(first, f);
         }
       }
-      std::vector<char> is_patch(m, 1), has_free(m, 0);   // per group root
+      std::vector<char> is_patch(m, 1);   // per group root
       for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
         std::size_t in = 0, out = 0;
         std::uint32_t root = UINT32_MAX;
@@ -573,14 +585,13 @@ private:
         if(in == 0) continue;
         if(several_groups || in > 2) { is_patch[root] = 0; continue; }
         if(in == 1) {   // a free edge of the group
-          has_free[root] = 1;
           if(out != 1) is_patch[root] = 0;
         } else if(out != 0) is_patch[root] = 0;   // non-manifold inside the group
       }
       for(std::size_t f = 0; f < m; ++f)
         if(candidate[f]) {
           const std::uint32_t r = find(f);
-          if(!is_patch[r] || !has_free[r]) { m_two_sided[f] = true; ++m_summary.sheet_triangles; }
+          if(!is_patch[r]) { m_two_sided[f] = true; ++m_summary.sheet_triangles; }
         }
       for(std::size_t i = 0; i < m; ++i) uf[i] = std::uint32_t(i);
     }
@@ -646,12 +657,68 @@ private:
       const double v = a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
       volume[r] += flipped[f] ? -v : v;   // oriented as orient_polygon_soup left it
     }
+    // nesting depth of the closed components: how many other closed components contain a point of it
+    std::vector<std::uint32_t> closed_roots;
+    for(std::uint32_t f : one_sided) if(find(f) == f && comp_closed[f]) closed_roots.push_back(f);
+    std::vector<int> depth(m, 0);
+    if(closed_roots.size() > 1) {
+      std::vector<Bbox_3> cbox(m);
+      std::vector<std::vector<std::uint32_t>> members(m);
+      for(std::uint32_t f : one_sided) {
+        const std::uint32_t r = find(f);
+        if(!comp_closed[r]) continue;
+        members[r].push_back(f);
+        cbox[r] += m_points[m_indices[f][0]].bbox() + m_points[m_indices[f][1]].bbox() + m_points[m_indices[f][2]].bbox();
+      }
+      typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t> Box;
+      std::vector<Box> boxes;
+      for(std::uint32_t r : closed_roots) boxes.push_back(Box(cbox[r], r));
+      auto contains = [](const Bbox_3& a, const Bbox_3& b) {   // a contains b
+        return a.xmin() <= b.xmin() && a.ymin() <= b.ymin() && a.zmin() <= b.zmin() && a.xmax() >= b.xmax() &&
+               a.ymax() >= b.ymax() && a.zmax() >= b.zmax();
+      };
+      // |winding number| of component r (as oriented now) at p, by direct summation
+      auto winding = [&](std::uint32_t r, const std::array<double, 3>& p) {
+        double w = 0;
+        for(std::uint32_t f : members[r]) {
+          std::array<double, 3> x[3];
+          for(int k = 0; k < 3; ++k) {
+            x[k] = internal_vec(m_points[m_indices[f][std::size_t(k)]]);
+            for(int d = 0; d < 3; ++d) x[k][std::size_t(d)] -= p[std::size_t(d)];
+          }
+          if(flipped[f]) std::swap(x[1], x[2]);
+          const double la = std::sqrt(x[0][0] * x[0][0] + x[0][1] * x[0][1] + x[0][2] * x[0][2]);
+          const double lb = std::sqrt(x[1][0] * x[1][0] + x[1][1] * x[1][1] + x[1][2] * x[1][2]);
+          const double lc = std::sqrt(x[2][0] * x[2][0] + x[2][1] * x[2][1] + x[2][2] * x[2][2]);
+          const double det = x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
+                             x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
+          auto dot = [](const std::array<double, 3>& u, const std::array<double, 3>& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+          const double den = la * lb * lc + dot(x[0], x[1]) * lc + dot(x[1], x[2]) * la + dot(x[2], x[0]) * lb;
+          w += 2 * std::atan2(det, den);
+        }
+        return std::abs(w) / (4 * CGAL_PI);
+      };
+      CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
+        for(int pass = 0; pass < 2; ++pass) {
+          const Box& outer = pass ? b : a;
+          const Box& inner = pass ? a : b;
+          if(!contains(cbox[outer.info()], cbox[inner.info()])) continue;
+          const std::uint32_t f = members[inner.info()].front();
+          std::array<double, 3> c{{0, 0, 0}};
+          for(int k = 0; k < 3; ++k) {
+            const auto v = internal_vec(m_points[m_indices[f][std::size_t(k)]]);
+            for(int d = 0; d < 3; ++d) c[std::size_t(d)] += v[std::size_t(d)] / 3;
+          }
+          if(winding(outer.info(), c) > 0.5) ++depth[inner.info()];
+        }
+      });
+    }
     std::vector<char> flip_comp(m, 0);
     for(std::uint32_t f : one_sided) {
       const std::uint32_t r = find(f);
       if(r != f) continue;
       ++m_summary.components;
-      if(comp_closed[r]) flip_comp[r] = volume[r] < 0;
+      if(comp_closed[r]) flip_comp[r] = (volume[r] < 0) != (depth[r] % 2 == 1);
       else flip_comp[r] = 2 * nflipped[r] > size[r];   // keep the input's majority orientation
     }
     for(std::uint32_t f : one_sided) {

@@ -29,6 +29,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <unordered_map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -56,14 +57,32 @@ struct Surface_soup
   std::size_t polygons = 0;             ///< polygons read (before splitting into triangles)
   std::vector<std::string> warnings;    ///< one line each, naming the file
 
-  /// index of the part named `name`, created if needed
+  /// index of the part named `name`, created if needed (parts of the same name are one part)
   int part(const std::string& name)
   {
-    for(std::size_t i = 0; i < part_names.size(); ++i)
-      if(part_names[i] == name) return int(i);
+    if(m_index.size() != part_names.size()) {   // part_names was filled or changed by the caller
+      m_index.clear();
+      for(std::size_t i = 0; i < part_names.size(); ++i) m_index.emplace(part_names[i], int(i));
+    }
+    const auto it = m_index.find(name);
+    if(it != m_index.end()) return it->second;
     part_names.push_back(name);
+    m_index.emplace(name, int(part_names.size() - 1));
     return int(part_names.size() - 1);
   }
+
+  /// a new part named after a file's base name: `stem`, or `stem_2`, `stem_3`, ... when a part of
+  /// that name exists already (two files `a/part.stl` and `b/part.stl` stay two patches)
+  int file_part(const std::string& stem)
+  {
+    std::string n = stem;
+    for(int k = 2; std::find(part_names.begin(), part_names.end(), n) != part_names.end(); ++k)
+      n = stem + "_" + std::to_string(k);
+    return part(n);
+  }
+
+private:
+  std::unordered_map<std::string, int> m_index;
 };
 
 namespace internal {
@@ -106,6 +125,8 @@ inline std::string gunzip(const std::string& data, const std::string& name)
     in.push(bio::gzip_decompressor());
     in.push(bio::array_source(data.data(), data.size()));
     bio::copy(in, bio::back_inserter(out));
+  } catch(const std::bad_alloc&) {
+    throw Input_error(name + ": the decompressed gzip stream does not fit in memory", Input_error_cause::UNREADABLE);
   } catch(const std::exception& e) {
     throw Input_error(name + ": the gzip stream is corrupt or truncated (" + e.what() + ")", Input_error_cause::TRUNCATED);
   }
@@ -201,7 +222,8 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
   Text_cursor c{data.data(), data.data() + data.size()};
   const std::size_t base = soup.points.size();
   int part = -1;   // created at the first face, so a file without groups is one part named after it
-  std::string pending = stem_of(name);
+  std::string pending;   // empty: the part named after the file
+  int stem_part = -1;
   std::size_t ignored = 0;
   std::vector<std::size_t> poly;
   std::vector<std::pair<std::size_t, std::size_t>> face_ranges;   // checked once all vertices are known
@@ -228,8 +250,11 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
           throw Input_error(name + ": line " + std::to_string(c.line) + ": '" + std::string(t) +
                             "' is not a vertex index", Input_error_cause::MALFORMED);
         const long long nv = (long long)(soup.points.size() - base);
+        if(i > (long long)UINT32_MAX || i < -(long long)UINT32_MAX)
+          throw Input_error(name + ": line " + std::to_string(c.line) + ": vertex index " + std::to_string(i) +
+                            " is out of range", Input_error_cause::BAD_INDEX);
         if(i < 0) {   // relative to the vertices read so far
-          if(-i > nv)
+          if(i < -nv)
             throw Input_error(name + ": line " + std::to_string(c.line) + ": relative index " +
                               std::to_string(i) + " but only " + std::to_string(nv) + " vertices so far", Input_error_cause::BAD_INDEX);
           i = nv + 1 + i;
@@ -238,13 +263,16 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
       }
       if(raw.size() - first < 3)
         throw Input_error(name + ": line " + std::to_string(c.line) + ": a face needs at least three vertices", Input_error_cause::MALFORMED);
-      if(part < 0) part = soup.part(pending);
+      if(part < 0) {
+        if(!pending.empty()) part = soup.part(pending);
+        else { if(stem_part < 0) stem_part = soup.file_part(stem_of(name)); part = stem_part; }
+      }
       face_ranges.push_back({first, raw.size()});
       face_part.push_back(part);
       face_line.push_back(c.line);
     } else if(kw == "g" || kw == "o") {
       std::string n = c.rest_of_line();
-      if(n.empty()) n = kw == "g" ? "default" : stem_of(name);
+      if(n.empty() && kw == "g") n = "default";
       pending = n;
       part = -1;
     } else if(!kw.empty() && kw[0] != '#') {
@@ -274,19 +302,21 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
 template <typename Point_3>
 void read_STL_binary(const std::string& data, const std::string& name, double scale, Surface_soup<Point_3>& soup)
 {
+  if(data.find_first_not_of(" \t\r\n\f\v") == std::string::npos)
+    throw Input_error(name + ": the file is empty", Input_error_cause::EMPTY);
   if(data.size() < 84)
     throw Input_error(name + ": too short for a binary STL (" + std::to_string(data.size()) +
-                      " bytes) and not an ASCII STL", Input_error_cause::TRUNCATED);
+                      " bytes) and not an ASCII STL", Input_error_cause::MALFORMED);
   std::uint32_t n = 0;
   std::memcpy(&n, data.data() + 80, 4);   // little-endian on every platform we build for
   const std::uint64_t expected = 84 + 50 * std::uint64_t(n);
   if(expected != data.size())
     throw Input_error(name + ": binary STL declares " + std::to_string(n) + " triangles (" +
                       std::to_string(expected) + " bytes) but has " + std::to_string(data.size()) +
-                      " bytes (truncated or not an STL file)", Input_error_cause::TRUNCATED);
+                      " bytes (" + (expected > data.size() ? "truncated" : "longer than declared") + ", or not an STL file)", expected > data.size() ? Input_error_cause::TRUNCATED : Input_error_cause::MALFORMED);
   if(n == 0) throw Input_error(name + ": the STL file has no triangle", Input_error_cause::NO_SURFACE);
   const std::size_t base = soup.points.size();
-  const int part = soup.part(stem_of(name));
+  const int part = soup.file_part(stem_of(name));
   soup.points.reserve(base + 3 * std::size_t(n));
   std::vector<std::size_t> poly(3);
   for(std::uint32_t t = 0; t < n; ++t) {
@@ -308,6 +338,7 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
   Text_cursor c{data.data(), data.data() + data.size()};
   const std::size_t base = soup.points.size();
   std::size_t solids = 0, facets = 0;
+  int stem_part = -1;
   auto fail = [&](const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED) {
     c.skip_blanks();
     const bool at_end = c.p >= c.end;
@@ -319,8 +350,9 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
   for(std::string_view t = c.any_token(); !t.empty(); t = c.any_token()) {
     if(!ieq(t, "solid")) fail("expected 'solid', found '" + std::string(t.substr(0, 40)) + "'");
     std::string sname = c.rest_of_line();
-    if(sname.empty()) sname = stem_of(name);
-    const int part = soup.part(sname);
+    int part;
+    if(!sname.empty()) part = soup.part(sname);
+    else { if(stem_part < 0) stem_part = soup.file_part(stem_of(name)); part = stem_part; sname = stem_of(name); }
     ++solids;
     bool closed = false;
     for(t = c.any_token(); !t.empty(); t = c.any_token()) {
@@ -442,7 +474,7 @@ void read_OFF_buffer(const std::string& data, const std::string& name, double sc
     c.next_line();
   }
   check_finite(soup.points, base, name);
-  const int part = soup.part(stem_of(name));
+  const int part = soup.file_part(stem_of(name));
   std::vector<std::size_t> poly;
   for(long long f = 0; f < counts[1]; ++f) {
     if(!next_line_start()) throw Input_error(name + ": the file ends after " + std::to_string(f) + " of " +
@@ -579,7 +611,7 @@ void read_PLY_buffer(const std::string& data, const std::string& name, double sc
   const std::size_t base = soup.points.size();
   std::size_t nv = 0;
   bool has_faces = false;
-  const int part = soup.part(stem_of(name));
+  const int part = soup.file_part(stem_of(name));
   std::vector<std::size_t> poly;
   std::vector<std::pair<std::vector<std::size_t>, std::size_t>> faces;   // checked once all vertices are known
   for(const Ply_element& e : elements) {
@@ -671,7 +703,7 @@ void read_surface_buffer(const std::string& data, const std::string& name, const
     else if(format == "off") internal::read_OFF_buffer(data, name, scale, soup);
     else if(format == "ply") internal::read_PLY_buffer(data, name, scale, soup);
     else throw Input_error(name + ": unknown surface format '" + format + "' (expected .off, .obj, .stl or .ply, "
-                           "optionally gzip-compressed)", Input_error_cause::TRUNCATED);
+                           "optionally gzip-compressed)", Input_error_cause::UNSUPPORTED);
   } catch(...) {
     soup.points.resize(np); soup.triangles.resize(nt); soup.part_of_triangle.resize(nt);
     soup.part_names.resize(nn); soup.polygons = npoly;

@@ -10,6 +10,7 @@
 
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -103,9 +104,16 @@ bool write_OpenFOAM(const std::string& case_dir, const HexMesh& mesh, const Poly
     if(!os) return false;
     internal::foam_header(os, "polyBoundaryMesh", loc, "boundary");
     os << pm.patches.size() << "\n(\n";
+    std::vector<std::string> words;   // OpenFOAM words, made unique ("a b" and "a_b" both give "a_b")
+    for(std::size_t p = 0; p < pm.patches.size(); ++p) {
+      const std::string w = internal::foam_word(pm.patches[p].name);
+      std::string u = w;
+      for(int k = 2; std::find(words.begin(), words.end(), u) != words.end(); ++k) u = w + "_" + std::to_string(k);
+      words.push_back(u);
+    }
     for(std::size_t p = 0; p < pm.patches.size(); ++p) {
       const std::string type = internal::foam_word(mesh.patch_type(p));
-      os << "    " << internal::foam_word(pm.patches[p].name) << "\n    {\n"
+      os << "    " << words[p] << "\n    {\n"
          << "        type            " << type << ";\n"
          << (type == "patch" ? std::string() : "        inGroups        List<word> 1(" + type + ");\n")
          << "        nFaces          " << pm.patches[p].size << ";\n"

@@ -165,7 +165,7 @@ public:
     for(int a = 0; a < 3; ++a) {
       m_lo[a] = m_box.min(a); m_hi[a] = m_box.max(a);
       const double L = m_hi[a] - m_lo[a];
-      if(!(L > 0) || !std::isfinite(L)) throw Input_error("the meshing box is empty or not finite", Input_error_cause::EMPTY);
+      if(!(L > 0) || !std::isfinite(L)) throw Input_error("the meshing box is empty or not finite", Input_error_cause::BAD_PARAMETER);
       const double n = std::ceil(L / CGAL::to_double(size) * (1 - 1e-12));
       if(n > double(1u << 20)) throw Input_error("the cell size is too small for the box (more than 2^20 cells per axis)", Input_error_cause::BAD_PARAMETER);
       m_n[a] = std::uint32_t((std::max)(1.0, n));
@@ -489,7 +489,7 @@ public:
       for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
         if(m_nodes[id].is_leaf() && m_component[id] == comp) m_nodes[id].flags |= KEPT;
       // open or inconsistent surfaces: the flood may have leaked through a hole into a body
-      if(!m_domain.has_exact_inside_test()) find_leaks();
+      if(!m_domain.has_exact_inside_test()) find_leaks(s);
     } else if(m_domain.has_exact_inside_test()) {
       // closed input: a component of uncut cells lies on one side, one exact test decides it
       std::vector<char> inside(first_of_component.size());
@@ -510,9 +510,10 @@ public:
   // Leaks: the kept cells (the flood fill from the seed) that the winding number puts inside a body
   // are removed; connected groups of them are reported, with the faces across which the flood
   // entered them (the hole).
-  void find_leaks()
+  void find_leaks(std::uint32_t seed_cell)
   {
     m_leaks.clear();
+    std::vector<int> leak_of(m_nodes.size(), -1);
     std::vector<std::uint32_t> leak_cells;
     std::vector<double> wn(m_nodes.size(), 0.0);
     for(std::uint32_t id = 0; id < m_nodes.size(); ++id) {
@@ -533,6 +534,7 @@ public:
         const std::uint32_t cur = queue[q];
         const Cell c = make_cell(m_nodes[cur]);
         const Bbox_3 cb = c.bbox();
+        leak_of[cur] = int(m_leaks.size());
         ++leak.cells;
         leak.volume += (cb.xmax() - cb.xmin()) * (cb.ymax() - cb.ymin()) * (cb.zmax() - cb.zmin());
         leak.bbox += cb;
@@ -563,6 +565,39 @@ public:
       m_leaks.push_back(leak);
     }
     for(std::uint32_t id : leak_cells) m_nodes[id].flags &= std::uint8_t(~LEAK);
+    if(m_leaks.empty()) return;
+    // flood again from the seed: pockets reached only through a leak (a cavity inside a body,
+    // with a winding number below 0.5) are cut off from the region; they go with their leak
+    std::vector<char> reached(m_nodes.size(), 0);
+    queue.clear();
+    if(m_nodes[seed_cell].flags & KEPT) { reached[seed_cell] = 1; queue.push_back(seed_cell); }
+    for(std::size_t q = 0; q < queue.size(); ++q)
+      for(int f = 0; f < 6; ++f)
+        for_each_face_neighbour(queue[q], f, [&](std::uint32_t j) {
+          if((m_nodes[j].flags & KEPT) && !reached[j]) { reached[j] = 1; queue.push_back(j); }
+        });
+    for(std::uint32_t start = 0; start < m_nodes.size(); ++start) {
+      if(!m_nodes[start].is_leaf() || !(m_nodes[start].flags & KEPT) || reached[start]) continue;
+      queue.clear();
+      queue.push_back(start);
+      reached[start] = 1;
+      int owner = -1;
+      double volume = 0;
+      for(std::size_t q = 0; q < queue.size(); ++q) {
+        const std::uint32_t cur = queue[q];
+        m_nodes[cur].flags &= std::uint8_t(~KEPT);
+        const Bbox_3 cb = make_cell(m_nodes[cur]).bbox();
+        volume += (cb.xmax() - cb.xmin()) * (cb.ymax() - cb.ymin()) * (cb.zmax() - cb.zmin());
+        for(int f = 0; f < 6; ++f)
+          for_each_face_neighbour(cur, f, [&](std::uint32_t j) {
+            if(leak_of[j] >= 0 && owner < 0) owner = leak_of[j];
+            if((m_nodes[j].flags & KEPT) && !reached[j]) { reached[j] = 1; queue.push_back(j); }
+          });
+      }
+      Region_leak& l = m_leaks[std::size_t(owner < 0 ? 0 : owner)];
+      l.cut_off_cells += queue.size();
+      l.cut_off_volume += volume;
+    }
     std::stable_sort(m_leaks.begin(), m_leaks.end(),
                      [](const Region_leak& a, const Region_leak& b) { return a.volume > b.volume; });
   }
@@ -613,7 +648,13 @@ public:
     out.box = m_box;
     const char* box_names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
     for(int f = 0; f < 6; ++f) out.patch_names.push_back(box_names[f]);
-    for(const std::string& s : m_domain.patch_names()) out.patch_names.push_back(s);
+    for(const std::string& s : m_domain.patch_names()) {
+      // a part named like a box face or another part gets a suffix: patch names are unique
+      std::string n = s;
+      for(int k = 2; std::find(out.patch_names.begin(), out.patch_names.end(), n) != out.patch_names.end(); ++k)
+        n = s + "_" + std::to_string(k);
+      out.patch_names.push_back(n);
+    }
     out.patch_types.assign(out.patch_names.size(), "wall");
     for(int f = 0; f < 6; ++f) out.patch_types[std::size_t(f)] = "patch";
 
