@@ -254,7 +254,7 @@ def main():
     rep = os.path.join(out, "r.json")
     hexmesh(ctx, [os.path.join(W, "duct.obj")], [case],
             ["-q", "--size", "0.25", "--surface-size", "0.125", "--patch-name", "(in|out)let=ports",
-             "--patch-type", "ports=patch"], rep)
+             "--patch-type", "ports=patch", "--patch-type", "zmin=symmetryPlane"], rep)
     j = json.load(open(rep))
     faces = {p["name"]: (p["type"], p["faces"]) for p in j["patches"]}
     before = json.load(open(os.path.join(W, "patches_duct_obj", "r.json")))
@@ -265,6 +265,8 @@ def main():
     r = run(["checkMesh", "-case", case], env=env)
     check(r.returncode == 0 and "Mesh OK" in r.stdout and re.search(r"^\s+ports\s+\d+", r.stdout, re.M),
           "checkMesh: Mesh OK with the renamed patch")
+    boundary = open(os.path.join(case, "constant", "polyMesh", "boundary")).read()
+    check(re.search(r"zmin\s*\{\s*type\s+symmetryPlane;", boundary) is not None, "--patch-type zmin=symmetryPlane written")
 
     # 4. a box with a hole, meshed around from outside: the leak is reported at the hole
     print("[leaks]")
