@@ -176,6 +176,7 @@ def main():
     if "eight_external" in results:
         work, rep, out = results["eight_external"]
         check("Overall domain bounding box (-1 -1 -1) (2 1 1)" in out, "the box is honoured exactly")
+        check(re.search(r"Number of regions: 1 \(OK\)", out) is not None, "a seeded region is one region (checkMesh)")
         for p in ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax", "eight"]:
             check(re.search(r"^\s+%s\s+[1-9]\d*\s" % p, out, re.M) is not None, f"patch {p} has faces")
 

@@ -118,6 +118,7 @@ public:
   struct Statistics
   {
     std::size_t leaves = 0, cut_leaves = 0, kept_cells = 0, balance_splits = 0, components = 0, trimmed_cells = 0;
+    std::size_t disconnected_cells = 0;   ///< seeded region: cells cut off from the seed by trimming
     int max_level_reached = 0;
     std::array<std::uint32_t, 3> initial_cells = {{0, 0, 0}};
   };
@@ -504,7 +505,40 @@ public:
           m_nodes[id].flags |= KEPT;
     }
     trim();
+    if(seed) keep_seed_component(leaf_containing(*seed));
     for(const Node& nd : m_nodes) if(nd.is_leaf() && (nd.flags & KEPT)) ++m_stats.kept_cells;
+  }
+
+  // A seeded region is one connected region: trimming can cut pockets off it (behind a passage
+  // one cell thick); they are removed. The flood starts at the seed's cell, or, if trimming removed
+  // it, at the nearest kept cell of the seed's component.
+  void keep_seed_component(std::uint32_t seed_cell)
+  {
+    std::vector<char> seen(m_nodes.size(), 0);
+    std::vector<std::uint32_t> queue{seed_cell};
+    seen[seed_cell] = 1;
+    std::uint32_t start = NONE;
+    for(std::size_t q = 0; q < queue.size() && start == NONE; ++q) {
+      const std::uint32_t cur = queue[q];
+      if(m_nodes[cur].flags & KEPT) { start = cur; break; }
+      for(int f = 0; f < 6; ++f)
+        for_each_face_neighbour(cur, f, [&](std::uint32_t j) {
+          if(!seen[j] && m_component[j] == m_component[seed_cell]) { seen[j] = 1; queue.push_back(j); }
+        });
+    }
+    std::fill(seen.begin(), seen.end(), 0);
+    queue.clear();
+    if(start != NONE) { seen[start] = 1; queue.push_back(start); }
+    for(std::size_t q = 0; q < queue.size(); ++q)
+      for(int f = 0; f < 6; ++f)
+        for_each_face_neighbour(queue[q], f, [&](std::uint32_t j) {
+          if(!seen[j] && (m_nodes[j].flags & KEPT)) { seen[j] = 1; queue.push_back(j); }
+        });
+    for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+      if(m_nodes[id].is_leaf() && (m_nodes[id].flags & KEPT) && !seen[id]) {
+        m_nodes[id].flags &= std::uint8_t(~KEPT);
+        ++m_stats.disconnected_cells;
+      }
   }
 
   // Leaks: the kept cells (the flood fill from the seed) that the winding number puts inside a body
