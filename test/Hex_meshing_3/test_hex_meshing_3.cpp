@@ -6,6 +6,8 @@
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
+#include <CGAL/Hex_meshing_3/Feature_curves_3.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/Octree_mesher_3.h>
 #include <CGAL/make_hex_mesh_3.h>
@@ -669,6 +671,61 @@ void test_dirty_input()
   }
 }
 
+// ---- feature curves: counts on simple shapes, and CGAL's detect_sharp_edges() as the oracle ----
+void test_features()
+{
+  typedef HM::Feature_curves_3<K> Features;
+  std::cout << "feature curves\n";
+  {
+    Domain cube("data/cube.off");
+    Features f(cube);
+    assert(f.number_of_edges(Features::SHARP) == 12 && f.edges().size() == 12);
+    assert(f.corners().size() == 8 && f.curves().size() == 12);
+    for(const auto& c : f.curves()) assert(c.vertices.size() == 2 && !c.closed);
+    std::cout << "  cube: 12 sharp edges, 8 corners, 12 curves\n";
+  }
+  {
+    Domain cyl("data/cylinder.off");
+    Features f(cyl);
+    assert(f.corners().empty() && f.curves().size() == 2);
+    for(const auto& c : f.curves()) assert(c.closed && c.vertices.size() > 20);
+    std::cout << "  cylinder: 2 closed rims of " << f.curves()[0].vertices.size() << " and " << f.curves()[1].vertices.size()
+              << " vertices, no corner\n";
+  }
+  {
+    Domain holes("data/elephant-with-holes.off");
+    Features f(holes);
+    assert(f.number_of_edges(Features::OPEN) == holes.input_summary().boundary_edges);
+    std::cout << "  elephant-with-holes: " << f.number_of_edges(Features::OPEN) << " open edges, " << f.curves().size()
+              << " curves\n";
+  }
+  for(const char* file : {"data/fandisk.off", "data/anchor.off", "data/t20_part.off"}) {
+    Domain d(file);
+    Features f(d);
+    typedef CGAL::Surface_mesh<Point_3> SM;
+    SM sm;
+    std::vector<std::vector<std::size_t>> polys;
+    for(const auto& t : d.triangle_indices()) polys.push_back({t[0], t[1], t[2]});
+    CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(d.points(), polys, sm);
+    auto is_sharp = sm.add_property_map<SM::Edge_index, bool>("e:sharp", false).first;
+    CGAL::Polygon_mesh_processing::detect_sharp_edges(sm, 30.0, is_sharp);
+    std::set<std::pair<std::uint32_t, std::uint32_t>> theirs, ours;
+    for(auto e : sm.edges())
+      if(is_sharp[e]) {
+        std::uint32_t a = std::uint32_t(sm.vertex(e, 0)), b = std::uint32_t(sm.vertex(e, 1));
+        theirs.insert({(std::min)(a, b), (std::max)(a, b)});
+      }
+    for(const auto& e : f.edges())
+      if(e.kind & Features::SHARP) ours.insert({e.vertices[0], e.vertices[1]});
+    std::cout << "  " << file << ": " << ours.size() << " sharp edges (detect_sharp_edges: " << theirs.size() << "), "
+              << f.corners().size() << " corners, " << f.curves().size() << " curves\n";
+    assert(ours == theirs && !ours.empty());
+    std::size_t in_curves = 0;   // every feature edge is on exactly one curve
+    for(const auto& c : f.curves()) in_curves += c.vertices.size() - (c.closed ? 0 : 1);
+    assert(in_curves == f.edges().size());
+  }
+}
+
 int main(int argc, char** argv)
 {
   std::cout << std::unitbuf;   // keep the log in order with assertion messages
@@ -681,6 +738,7 @@ int main(int argc, char** argv)
   test_meshing();
   test_readers_and_errors();
   test_dirty_input();
+  test_features();
   std::cout << "all checks passed\n";
   return EXIT_SUCCESS;
 }

@@ -10,6 +10,7 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hex_mesh_criteria_3.h>
+#include <CGAL/Hex_meshing_3/Feature_curves_3.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
 #include <CGAL/Hex_meshing_3/IO/write_MSH.h>
@@ -332,6 +333,16 @@ int main(int argc, char** argv)
                 << (domain.has_exact_inside_test() ? "exact (closed surface)" : "winding number (open or inconsistent surface)")
                 << "\n";
     }
+    // feature curves (30 degrees): reported; the boundary capture that snaps to them comes next
+    t = std::chrono::steady_clock::now();
+    const HM::Feature_curves_3<K> features(domain);
+    const double t_features = since(t);
+    typedef HM::Feature_curves_3<K> FC;
+    if(!quiet)
+      std::cerr << "hexmesh: features (30 degrees): " << features.number_of_edges(FC::SHARP) << " sharp, "
+                << features.number_of_edges(FC::OPEN) << " open, " << features.number_of_edges(FC::NON_MANIFOLD)
+                << " non-manifold, " << features.number_of_edges(FC::PATCH_BORDER) << " part-border edges; "
+                << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
     const CGAL::Bbox_3 bb = domain.bbox();
     const double extent = (std::max)({bb.xmax() - bb.xmin(), bb.ymax() - bb.ymin(), bb.zmax() - bb.zmin()});
     if(size <= 0) size = (has_box ? (std::max)({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()}) / 1.2
@@ -475,6 +486,11 @@ int main(int argc, char** argv)
                      {"duplicate_triangles", sum.duplicate_triangles}, {"reversed_duplicates", sum.reversed_duplicates},
                      {"sheet_triangles", sum.sheet_triangles}, {"reoriented_triangles", sum.reoriented_triangles},
                      {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles}};
+      j["features"] = {{"feature_angle", 30.0}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
+                       {"open_edges", features.number_of_edges(FC::OPEN)},
+                       {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},
+                       {"part_border_edges", features.number_of_edges(FC::PATCH_BORDER)},
+                       {"curves", features.curves().size()}, {"corners", features.corners().size()}};
       nlohmann::ordered_json jl = nlohmann::ordered_json::array();
       for(const HM::Region_leak& l : leaks) {
         auto bj = [](const CGAL::Bbox_3& b) { return nlohmann::ordered_json{b.xmin(), b.ymin(), b.zmin(), b.xmax(), b.ymax(), b.zmax()}; };
@@ -497,6 +513,7 @@ int main(int argc, char** argv)
       nlohmann::ordered_json sec;
       sec["read"] = t_read;
       sec["repair"] = t_repair;
+      sec["features"] = t_features;
       for(const auto& s : progress.seconds) sec[s.first] = s.second;
       sec["quality"] = t_quality; sec["write"] = t_write; sec["total"] = total;
       j["seconds"] = sec;

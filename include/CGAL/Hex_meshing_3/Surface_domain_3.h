@@ -391,6 +391,7 @@ private:
       }
       return inside == 0 ? 0 : (inside == 7 ? 2 : 1);
     };
+    std::map<V, std::uint32_t> point_index;   // corners of the pieces
     std::vector<Triangle_indices> out_idx;
     std::vector<int> out_patch;
     std::vector<bool> out_sided;
@@ -403,9 +404,10 @@ private:
       if(k == 0 || depth == 6) {
         Triangle_indices t;
         const V* v[3] = {&a, &b, &c};
-        for(int i = 0; i < 3; ++i) {
-          t[std::size_t(i)] = std::uint32_t(m_points.size());
-          m_points.push_back(Point_3((*v[i])[0], (*v[i])[1], (*v[i])[2]));
+        for(int i = 0; i < 3; ++i) {   // pieces share their corners (midpoints are computed alike)
+          const auto ins = point_index.emplace(*v[i], std::uint32_t(m_points.size()));
+          if(ins.second) m_points.push_back(Point_3((*v[i])[0], (*v[i])[1], (*v[i])[2]));
+          t[std::size_t(i)] = ins.first->second;
         }
         out_idx.push_back(t); out_patch.push_back(m_patch[f]); out_sided.push_back(m_two_sided[f]);
         return;
@@ -435,7 +437,10 @@ private:
       if(k == 0) continue;
       changed[f] = 1;
       ++left_out;
-      if(k == 1) split(a, b, c, 1, f);   // the parts outside the other body are appended
+      if(k == 1) {   // the parts outside the other body are appended
+        for(int i = 0; i < 3; ++i) point_index.emplace(internal_vec(m_points[m_indices[f][std::size_t(i)]]), m_indices[f][std::size_t(i)]);
+        split(a, b, c, 1, f);
+      }
     }
     if(left_out == 0) return;
     // keep the unchanged triangles in order, then the kept pieces of the split ones
