@@ -38,6 +38,8 @@ struct Cell_3
   std::array<std::uint8_t, 3> level;
   std::array<Point_3, 8> corners;
   bool is_cut = false;          ///< the cell's hull meets the surface (exact test)
+  bool meets_feature = false;   ///< the cell meets a feature edge of the domain (exact test; only
+                                ///< computed when the criteria have a feature size)
 
   /// length of the longest of the 12 edges
   FT size() const
@@ -71,6 +73,7 @@ struct Cell_3
  * Model of `HexMeshCriteria_3`. Elementary criteria, in order:
  * - cell size: every cell's size is at most `cell_size` (a number or a field of the position);
  * - surface size: every cell cut by the surface has size at most `surface_size`;
+ * - feature size: every cell meeting a feature edge of the domain has size at most `feature_size`;
  * - refinement boxes: every cell overlapping a box (with positive volume) has size at most the
  *   box's size;
  * - user criteria added by `add_criterion()`.
@@ -112,6 +115,9 @@ public:
   /// an extra elementary criterion, tested after the built-in ones
   void add_criterion(std::function<Is_cell_bad(const Cell&)> extra) { m_extra.push_back(std::move(extra)); }
   void set_max_level(int l) { m_max_level = l; }
+  /// cells meeting a feature edge of the domain get size at most `size` (0: no such criterion);
+  /// the domain's feature edges are set by `Surface_domain_3::set_feature_edges()`
+  void set_feature_size(FT size) { m_feature_size = size; }
   /// @}
 
   /// \name Access
@@ -120,6 +126,8 @@ public:
   FT initial_size() const { return m_cell_size_value; }
   FT surface_size() const { return m_surface_size_value; }
   int max_level() const { return m_max_level; }
+  /// the size asked along feature edges (0: none)
+  FT feature_size() const { return m_feature_size; }
   const std::vector<std::pair<Bbox_3, FT>>& refinement_boxes() const { return m_boxes; }
   /// @}
 
@@ -136,6 +144,7 @@ public:
       const FT ss = m_surface_size_field ? m_surface_size_field(c.center()) : m_surface_size_value;
       if(exceeds(s, ss)) return Is_cell_bad(s / ss);
     }
+    if(c.meets_feature && m_feature_size > 0 && exceeds(s, m_feature_size)) return Is_cell_bad(s / m_feature_size);
     if(!m_boxes.empty()) {
       const Bbox_3 b = c.bbox();
       for(const auto& rb : m_boxes)
@@ -162,6 +171,7 @@ private:
   FT m_cell_size_value, m_surface_size_value;
   Size_field m_cell_size_field, m_surface_size_field;
   int m_max_level;
+  FT m_feature_size = 0;
   std::vector<std::pair<Bbox_3, FT>> m_boxes;
   std::vector<std::function<Is_cell_bad(const Cell&)>> m_extra;
 };

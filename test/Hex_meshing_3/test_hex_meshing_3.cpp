@@ -683,6 +683,32 @@ void test_features()
     assert(f.corners().size() == 8 && f.curves().size() == 12);
     for(const auto& c : f.curves()) assert(c.vertices.size() == 2 && !c.closed);
     std::cout << "  cube: 12 sharp edges, 8 corners, 12 curves\n";
+    // feature size: every cell the criteria see that meets a cube edge (independent test on the
+    // axis-aligned edges) is flagged, every flagged one meets an edge, and none is left coarser
+    Criteria along(0.5, 0.25);
+    along.set_feature_size(0.0625);
+    std::size_t flagged = 0, seen = 0;
+    along.add_criterion([&](const HM::Cell_3<K>& c) {
+      ++seen;
+      const CGAL::Bbox_3 b = c.bbox();
+      bool meets = false;   // the box meets an edge: two coordinates at +-1 inside the box, the third overlapping [-1, 1]
+      for(int a = 0; a < 3 && !meets; ++a)
+        for(double u : {-1.0, 1.0})
+          for(double v : {-1.0, 1.0}) {
+            const int i = (a + 1) % 3, j = (a + 2) % 3;
+            if(b.min(i) <= u && u <= b.max(i) && b.min(j) <= v && v <= b.max(j) && b.min(a) <= 1 && b.max(a) >= -1) meets = true;
+          }
+      assert(meets == c.meets_feature);
+      if(c.meets_feature) { ++flagged; assert(CGAL::to_double(c.size()) <= 0.0625 * (1 + 1e-9)); }
+      return CGAL::Hex_mesh_criteria_3<K>::Is_cell_bad();
+    });
+    cube.set_feature_edges(f.edge_vertices());
+    Mesh m1;
+    CGAL::make_hex_mesh_3(cube, along, m1);
+    check_mesh(m1, "cube with feature size");
+    assert(flagged > 0);
+    std::cout << "  cube, feature size 0.0625: " << flagged << " of " << seen << " cells seen meet an edge, all flagged, "
+              << "all of size 0.0625\n";
   }
   {
     Domain cyl("data/cylinder.off");

@@ -192,7 +192,7 @@ int main(int argc, char** argv)
       "--strict); 3 output error (exists without --force, or not writable); 4 the mesh failed a validity\n"
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
   std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules;
-  double size = 0, surface_size = 0, scale = 1;
+  double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0;
   std::string box_s, region = "inside";
   int max_level = 12;
   std::size_t max_cells = 0;
@@ -203,6 +203,10 @@ int main(int argc, char** argv)
   auto* size_opt = app.add_option("--size", size, "largest cell edge (default: the largest side of the input's bounding box / 10)");
   auto* ssize_opt = app.add_option("--surface-size", surface_size, "largest edge of cells cut by the surface (default: size / 4)");
   auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
+  app.add_option("--feature-angle", feature_angle, "an edge whose face normals differ by at least this many degrees is a "
+                                                   "feature (default 30)")->check(CLI::Range(0.0, 180.0));
+  auto* fsize_opt = app.add_option("--feature-size", feature_size, "largest edge of cells meeting a feature edge (sharp, open, "
+                                                                   "non-manifold or part-border edges; default: no such criterion)");
   app.add_option("--box", box_s, "meshing box xmin,ymin,zmin,xmax,ymax,zmax, honoured exactly "
                                  "(default: the input's bounding box grown by one cell size)");
   app.add_option("--refine-box", refine_boxes, "xmin,ymin,zmin,xmax,ymax,zmax:SIZE - cells overlapping the box get "
@@ -234,6 +238,8 @@ int main(int argc, char** argv)
     if(ssize_opt->count() && !(surface_size > 0 && std::isfinite(surface_size)))
       throw CLI::ValidationError("--surface-size", "must be a positive number");
     if(scale_opt->count() && !(scale > 0 && std::isfinite(scale))) throw CLI::ValidationError("--scale", "must be a positive number");
+    if(fsize_opt->count() && !(feature_size > 0 && std::isfinite(feature_size)))
+      throw CLI::ValidationError("--feature-size", "must be a positive number");
     if(!box_s.empty()) { box = parse_box(box_s, "--box"); has_box = true; }
     for(const std::string& rb : refine_boxes) {
       const auto colon = rb.rfind(':');
@@ -333,13 +339,16 @@ int main(int argc, char** argv)
                 << (domain.has_exact_inside_test() ? "exact (closed surface)" : "winding number (open or inconsistent surface)")
                 << "\n";
     }
-    // feature curves (30 degrees): reported; the boundary capture that snaps to them comes next
+    // feature curves: reported, and refined to --feature-size; snapping to them comes next
     t = std::chrono::steady_clock::now();
-    const HM::Feature_curves_3<K> features(domain);
+    HM::Feature_curves_3<K>::Options fopt;
+    fopt.feature_angle = feature_angle;
+    const HM::Feature_curves_3<K> features(domain, fopt);
+    if(feature_size > 0) domain.set_feature_edges(features.edge_vertices());
     const double t_features = since(t);
     typedef HM::Feature_curves_3<K> FC;
     if(!quiet)
-      std::cerr << "hexmesh: features (30 degrees): " << features.number_of_edges(FC::SHARP) << " sharp, "
+      std::cerr << "hexmesh: features (" << feature_angle << " degrees): " << features.number_of_edges(FC::SHARP) << " sharp, "
                 << features.number_of_edges(FC::OPEN) << " open, " << features.number_of_edges(FC::NON_MANIFOLD)
                 << " non-manifold, " << features.number_of_edges(FC::PATCH_BORDER) << " part-border edges; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
@@ -349,6 +358,7 @@ int main(int argc, char** argv)
                                   : extent) / 10;
     if(surface_size <= 0) surface_size = size / 4;
     Criteria criteria(size, surface_size, max_level);
+    if(feature_size > 0) criteria.set_feature_size(feature_size);
     for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
 
     Mesh mesh;
@@ -473,7 +483,8 @@ int main(int argc, char** argv)
     if(!reports.empty()) {
       nlohmann::ordered_json j;
       j["inputs"] = inputs;
-      j["options"] = {{"size", size}, {"surface_size", surface_size}, {"scale", scale}, {"max_level", max_level},
+      j["options"] = {{"size", size}, {"surface_size", surface_size}, {"feature_angle", feature_angle},
+                      {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},
                       {"patch_name", patch_name_rules}, {"patch_type", patch_type_rules}};
@@ -486,7 +497,7 @@ int main(int argc, char** argv)
                      {"duplicate_triangles", sum.duplicate_triangles}, {"reversed_duplicates", sum.reversed_duplicates},
                      {"sheet_triangles", sum.sheet_triangles}, {"reoriented_triangles", sum.reoriented_triangles},
                      {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles}};
-      j["features"] = {{"feature_angle", 30.0}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
+      j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
                        {"open_edges", features.number_of_edges(FC::OPEN)},
                        {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},
                        {"part_border_edges", features.number_of_edges(FC::PATCH_BORDER)},

@@ -63,6 +63,14 @@ public:
   }
 
   const std::vector<Edge>& edges() const { return m_edges; }
+  /// the feature edges as pairs of point indices (for `Surface_domain_3::set_feature_edges()`)
+  std::vector<std::array<Index, 2>> edge_vertices() const
+  {
+    std::vector<std::array<Index, 2>> v;
+    v.reserve(m_edges.size());
+    for(const Edge& e : m_edges) v.push_back(e.vertices);
+    return v;
+  }
   const std::vector<Curve>& curves() const { return m_curves; }
   /// the corners, sorted
   const std::vector<Index>& corners() const { return m_corners; }

@@ -135,6 +135,43 @@ public:
   const std::vector<Point_3>& points() const { return m_points; }
   const std::vector<Triangle_indices>& triangle_indices() const { return m_indices; }
   const Input_summary& input_summary() const { return m_summary; }
+  /*!
+   * sets the feature edges (pairs of point indices, e.g. `Feature_curves_3::edges()`): cells they
+   * meet can be refined to the criteria's feature size. Pairs that are not an edge of a triangle
+   * are ignored.
+   */
+  template <typename EdgeRange>
+  void set_feature_edges(const EdgeRange& edges)
+  {
+    std::vector<std::uint64_t> keys;
+    for(const auto& e : edges) {
+      const std::uint32_t a = std::uint32_t(e[0]), b = std::uint32_t(e[1]);
+      keys.push_back(edge_key(a, b));
+    }
+    std::sort(keys.begin(), keys.end());
+    m_feature_mask.assign(m_indices.size(), 0);
+    m_has_features = false;
+    for(std::size_t t = 0; t < m_indices.size(); ++t)
+      for(int k = 0; k < 3; ++k)
+        if(std::binary_search(keys.begin(), keys.end(), edge_key(m_indices[t][std::size_t(k)], m_indices[t][std::size_t((k + 1) % 3)]))) {
+          m_feature_mask[t] |= std::uint8_t(1u << k);
+          m_has_features = true;
+        }
+  }
+  /// are there feature edges?
+  bool has_feature_edges() const { return m_has_features; }
+  /// exact: does the closed box `b` meet a feature edge of triangle `i`?
+  bool do_intersect_feature(const Bbox_3& b, std::size_t i) const
+  {
+    if(!m_has_features || m_feature_mask[i] == 0) return false;
+    for(int k = 0; k < 3; ++k)
+      if(m_feature_mask[i] & (1u << k)) {
+        const typename GeomTraits::Segment_3 s(m_points[m_indices[i][std::size_t(k)]], m_points[m_indices[i][std::size_t((k + 1) % 3)]]);
+        if(CGAL::do_overlap(b, s.bbox()) && CGAL::do_intersect(b, s)) return true;
+      }
+    return false;
+  }
+
   /// is triangle `i` part of a zero-thickness sheet (two-sided: it bounds no volume)?
   bool is_two_sided(std::size_t i) const { return m_two_sided[i]; }
   /// `true` if `is_inside()` is exact (closed, consistently oriented, not self-intersecting input)
@@ -744,6 +781,8 @@ private:
   std::vector<Bbox_3> m_tri_bboxes;
   std::vector<int> m_patch;
   std::vector<bool> m_two_sided;
+  std::vector<std::uint8_t> m_feature_mask;   // bit k: edge (k, k+1) of the triangle is a feature
+  bool m_has_features = false;
   std::vector<std::string> m_patch_names;
   Bbox_3 m_bbox;
   Input_summary m_summary;

@@ -112,7 +112,7 @@ public:
     std::uint8_t flags = 0;
     bool is_leaf() const { return child == 0; }
   };
-  enum Flags : std::uint8_t { CUT = 1, KEPT = 2, LEAK = 4 };
+  enum Flags : std::uint8_t { CUT = 1, KEPT = 2, LEAK = 4, FEATURE = 8 };
 
   /// statistics of the last run
   struct Statistics
@@ -158,6 +158,7 @@ public:
   // grid set-up
   void init_box()
   {
+    m_use_features = m_domain.has_feature_edges() && m_criteria.feature_size() > 0;
     const FT size = m_criteria.initial_size();
     if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
       throw Input_error("the cell size must be a positive number", Input_error_cause::BAD_PARAMETER);
@@ -239,6 +240,9 @@ public:
       if(m_domain.do_intersect(b, l[i])) {
         std::swap(l[0], l[i]);   // the first hit is tested first in the children (likely to hit again)
         nd.flags |= CUT;
+        if(m_use_features)   // a cell meets a feature edge only if it meets a triangle of it
+          for(std::uint32_t t : l)
+            if(m_domain.do_intersect_feature(b, t)) { nd.flags |= FEATURE; break; }
         return;
       }
     l.clear();
@@ -279,6 +283,7 @@ public:
       c.corners[k] = Point_3(hex_corner_offsets()[k][0] ? hi[0] : lo[0], hex_corner_offsets()[k][1] ? hi[1] : lo[1],
                              hex_corner_offsets()[k][2] ? hi[2] : lo[2]);
     c.is_cut = (nd.flags & CUT) != 0;
+    c.meets_feature = (nd.flags & FEATURE) != 0;
     return c;
   }
 
@@ -824,6 +829,7 @@ private:
   std::vector<std::vector<std::uint32_t>> m_by_level;
   std::vector<int> m_component;
   std::vector<Region_leak> m_leaks;
+  bool m_use_features = false;
   std::size_t m_leaves = 0;
   Statistics m_stats;
 };
