@@ -7,6 +7,7 @@
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
 #include <CGAL/Hex_meshing_3/Feature_curves_3.h>
+#include <CGAL/Hex_meshing_3/fidelity.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/Octree_mesher_3.h>
@@ -724,6 +725,25 @@ void test_features()
     assert(f.number_of_edges(Features::OPEN) == holes.input_summary().boundary_edges);
     std::cout << "  elephant-with-holes: " << f.number_of_edges(Features::OPEN) << " open edges, " << f.curves().size()
               << " curves\n";
+  }
+  // fidelity of the staircase, both ways, against an independent brute-force distance
+  {
+    Domain eight("data/eight.off");
+    Mesh m;
+    CGAL::make_hex_mesh_3(eight, Criteria(0.1, 0.025), m);
+    const HM::Boundary_fidelity fid = HM::boundary_fidelity(m, eight, 2000);
+    std::cout << "  eight fidelity: " << fid.surface_faces << " faces, mesh->input max " << fid.max_face_distance
+              << " mean " << fid.mean_face_distance << "; input->mesh max " << fid.max_sample_distance << " mean "
+              << fid.mean_sample_distance << " (surface size 0.025)\n";
+    assert(fid.surface_faces == m.boundary_faces.size() && fid.samples == 2000);
+    assert(fid.max_face_distance > 0 && fid.max_face_distance <= 2 * std::sqrt(3.0) * 0.025);
+    assert(fid.max_sample_distance > 0 && fid.max_sample_distance <= 2 * std::sqrt(3.0) * 0.025);
+    // brute force at the worst face point
+    const Point_3 w(fid.worst_face_location[0], fid.worst_face_location[1], fid.worst_face_location[2]);
+    double best = 1e30;
+    for(std::size_t i = 0; i < eight.number_of_triangles(); ++i)
+      best = (std::min)(best, CGAL::to_double(CGAL::squared_distance(w, eight.triangle(i))));
+    assert(std::abs(std::sqrt(best) - fid.max_face_distance) < 1e-12);
   }
   for(const char* file : {"data/fandisk.off", "data/anchor.off", "data/t20_part.off"}) {
     Domain d(file);

@@ -11,6 +11,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Hex_mesh_criteria_3.h>
 #include <CGAL/Hex_meshing_3/Feature_curves_3.h>
+#include <CGAL/Hex_meshing_3/fidelity.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
 #include <CGAL/Hex_meshing_3/IO/write_MSH.h>
@@ -516,6 +517,16 @@ int main(int argc, char** argv)
                      {"hanging_nodes", mesh.hanging_nodes.size()}, {"boundary_faces", nboundary},
                      {"polyhedral_faces", pm.faces.size()}, {"internal_faces", pm.number_of_internal_faces()}};
       j["volume"] = volume;
+      {
+        const auto tf = std::chrono::steady_clock::now();
+        const HM::Boundary_fidelity fid = HM::boundary_fidelity(mesh, domain, 10000);
+        auto loc = [](const std::array<double, 3>& p) { return nlohmann::ordered_json{p[0], p[1], p[2]}; };
+        j["fidelity"] = {{"surface_faces", fid.surface_faces}, {"mesh_to_input_max", fid.max_face_distance},
+                         {"mesh_to_input_mean", fid.mean_face_distance}, {"mesh_to_input_worst_at", loc(fid.worst_face_location)},
+                         {"samples", fid.samples}, {"input_to_mesh_max", fid.max_sample_distance},
+                         {"input_to_mesh_mean", fid.mean_sample_distance}, {"input_to_mesh_worst_at", loc(fid.worst_sample_location)},
+                         {"surface_size", surface_size}, {"seconds", since(tf)}};
+      }
       nlohmann::ordered_json jp = nlohmann::ordered_json::array();
       const auto psizes = mesh.patch_sizes();
       for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
