@@ -744,6 +744,18 @@ void test_features()
     for(std::size_t i = 0; i < eight.number_of_triangles(); ++i)
       best = (std::min)(best, CGAL::to_double(CGAL::squared_distance(w, eight.triangle(i))));
     assert(std::abs(std::sqrt(best) - fid.max_face_distance) < 1e-12);
+    // topology: the figure-eight is a closed surface of genus 2, and so is this staircase of it
+    const HM::Surface_topology in = HM::surface_topology(eight);
+    HM::Polyhedral_mesh_3 pm;
+    pm.build(m);
+    const HM::Surface_topology out = HM::boundary_topology(pm);
+    std::cout << "  eight topology: input " << in.components << " component(s), chi " << in.euler_characteristic
+              << "; mesh boundary " << out.components << ", chi " << out.euler_characteristic << "\n";
+    assert(in.components == 1 && in.euler_characteristic == -2 && in.boundary_edges == 0);
+    assert(out.components == 1 && out.euler_characteristic == -2 && out.boundary_edges == 0);
+    Domain cube("data/cube.off");
+    const HM::Surface_topology ct = HM::surface_topology(cube);
+    assert(ct.components == 1 && ct.euler_characteristic == 2 && ct.vertices == 8 && ct.edges == 18 && ct.faces == 12);
   }
   for(const char* file : {"data/fandisk.off", "data/anchor.off", "data/t20_part.off"}) {
     Domain d(file);

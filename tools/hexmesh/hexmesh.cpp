@@ -526,6 +526,12 @@ int main(int argc, char** argv)
                          {"samples", fid.samples}, {"input_to_mesh_max", fid.max_sample_distance},
                          {"input_to_mesh_mean", fid.mean_sample_distance}, {"input_to_mesh_worst_at", loc(fid.worst_sample_location)},
                          {"surface_size", surface_size}, {"seconds", since(tf)}};
+        auto tj = [](const HM::Surface_topology& t) {
+          return nlohmann::ordered_json{{"components", t.components}, {"euler_characteristic", t.euler_characteristic},
+                                        {"vertices", t.vertices}, {"edges", t.edges}, {"faces", t.faces},
+                                        {"boundary_edges", t.boundary_edges}};
+        };
+        j["topology"] = {{"input", tj(HM::surface_topology(domain))}, {"mesh_boundary", tj(HM::boundary_topology(pm))}};
       }
       nlohmann::ordered_json jp = nlohmann::ordered_json::array();
       const auto psizes = mesh.patch_sizes();

@@ -120,6 +120,87 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   return r;
 }
 
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the topology of a closed polygonal surface: edge-connected components and the Euler
+ * characteristic V - E + F (2 for a sphere, 2 - 2g for a closed surface of genus g, summed over
+ * components).
+ */
+struct Surface_topology
+{
+  std::size_t components = 0;
+  long long euler_characteristic = 0;
+  std::size_t vertices = 0, edges = 0, faces = 0;
+  std::size_t boundary_edges = 0;   ///< edges of one face (0 on a closed surface)
+};
+
+namespace internal {
+template <typename PolygonRange>
+Surface_topology polygon_topology(const PolygonRange& polygons)
+{
+  Surface_topology t;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> edges;
+  std::vector<std::uint32_t> verts;
+  std::uint32_t f = 0;
+  for(const auto& poly : polygons) {
+    const std::size_t n = poly.size();
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t a = poly[i], b = poly[(i + 1) % n];
+      edges.push_back({a < b ? (a << 32 | b) : (b << 32 | a), f});
+      verts.push_back(std::uint32_t(a));
+    }
+    ++f;
+  }
+  t.faces = f;
+  std::sort(verts.begin(), verts.end());
+  t.vertices = std::size_t(std::unique(verts.begin(), verts.end()) - verts.begin());
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::uint32_t> uf(f);
+  for(std::uint32_t i = 0; i < f; ++i) uf[i] = i;
+  auto find = [&](std::uint32_t x) { while(uf[x] != x) { uf[x] = uf[uf[x]]; x = uf[x]; } return x; };
+  for(std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while(j < edges.size() && edges[j].first == edges[i].first) ++j;
+    ++t.edges;
+    if(j - i == 1) ++t.boundary_edges;
+    for(std::size_t k = i + 1; k < j; ++k) {
+      const std::uint32_t a = find(edges[i].second), b = find(edges[k].second);
+      if(a != b) uf[(std::max)(a, b)] = (std::min)(a, b);
+    }
+    i = j;
+  }
+  for(std::uint32_t i = 0; i < f; ++i) if(find(i) == i) ++t.components;
+  t.euler_characteristic = (long long)t.vertices - (long long)t.edges + (long long)t.faces;
+  return t;
+}
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the topology of the mesh boundary on the surface patches (patches 6 and up), from its
+ * polyhedral form `pm` (`Polyhedral_mesh_3::build()`), whose boundary faces list the hanging nodes
+ * on their edges, so that the boundary is a conforming polygonal surface.
+ */
+template <typename PolyhedralMesh>
+Surface_topology boundary_topology(const PolyhedralMesh& pm)
+{
+  std::vector<std::vector<std::uint32_t>> polys;
+  for(std::size_t p = 6; p < pm.patches.size(); ++p)
+    for(std::size_t f = pm.patches[p].start; f < pm.patches[p].start + pm.patches[p].size; ++f)
+      polys.emplace_back(pm.faces[f].begin(), pm.faces[f].end());
+  return internal::polygon_topology(polys);
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the topology of the domain's (repaired) triangles.
+ */
+template <typename Domain>
+Surface_topology surface_topology(const Domain& domain)
+{
+  return internal::polygon_topology(domain.triangle_indices());
+}
+
 } // namespace Hex_meshing_3
 } // namespace CGAL
 
