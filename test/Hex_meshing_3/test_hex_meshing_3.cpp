@@ -712,6 +712,37 @@ void test_features()
               << "all of size 0.0625\n";
   }
   {
+    // a user feature line inside the cube, away from the surface: the cells along it are refined
+    std::ofstream("tmp_line.obj") << "v -0.5 0.1 0.1\nv 0.5 0.1 0.1\nv 0.5 0.5 0.1\nl 1 2 -1\n";
+    std::vector<std::vector<Point_3>> lines;
+    HM::IO::read_polylines("tmp_line.obj", lines);
+    assert(lines.size() == 1 && lines[0].size() == 3 && lines[0][2] == Point_3(0.5, 0.5, 0.1));
+    expect_input_error([] { std::ofstream("tmp_badline.obj") << "v 0 0 0\nl 1 2\n"; std::vector<std::vector<Point_3>> l;
+                            HM::IO::read_polylines("tmp_badline.obj", l); }, "refers to vertex 2", HM::Input_error_cause::BAD_INDEX);
+    std::remove("tmp_line.obj"); std::remove("tmp_badline.obj");
+    Domain cube("data/cube.off");
+    cube.add_feature_polylines(lines);
+    Criteria c(0.5, 0.25);
+    c.set_feature_size(0.0625);
+    Mesh m;
+    CGAL::make_hex_mesh_3(cube, c, m);
+    check_mesh(m, "cube with a feature line inside");
+    std::size_t fine = 0;
+    for(const auto& h : m.hexahedra) {
+      const double e = CGAL::to_double(m.points[h[6]].x() - m.points[h[0]].x());
+      if(e > 0.0625 + 1e-9) continue;
+      ++fine;
+      const CGAL::Bbox_3 b = m.points[h[0]].bbox() + m.points[h[6]].bbox();
+      bool near = false;   // within 2 cells of one of the two segments (balance grades around them)
+      for(const auto& seg : cube.feature_segments())
+        near = near || CGAL::squared_distance(CGAL::midpoint(m.points[h[0]], m.points[h[6]]), seg) < CGAL::square(4 * 0.0625);
+      assert(near);
+      (void)b;
+    }
+    assert(fine > 0);
+    std::cout << "  cube with a user feature line inside: " << fine << " cells of 0.0625, all along the line\n";
+  }
+  {
     Domain cyl("data/cylinder.off");
     Features f(cyl);
     assert(f.corners().empty() && f.curves().size() == 2);

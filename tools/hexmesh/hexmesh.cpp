@@ -192,7 +192,7 @@ int main(int argc, char** argv)
       "Exit codes: 0 success; 1 usage error; 2 input error (unreadable input, bad seed, or a leak with\n"
       "--strict); 3 output error (exists without --force, or not writable); 4 the mesh failed a validity\n"
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
-  std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules;
+  std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, feature_files;
   double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0;
   std::string box_s, region = "inside";
   int max_level = 12;
@@ -208,6 +208,8 @@ int main(int argc, char** argv)
                                                    "feature (default 30)")->check(CLI::Range(0.0, 180.0));
   auto* fsize_opt = app.add_option("--feature-size", feature_size, "largest edge of cells meeting a feature edge (sharp, open, "
                                                                    "non-manifold or part-border edges; default: no such criterion)");
+  app.add_option("--features", feature_files, "OBJ file of feature lines ('l' polylines, optionally .gz): cells they "
+                                              "meet get at most --feature-size (repeatable)");
   app.add_option("--box", box_s, "meshing box xmin,ymin,zmin,xmax,ymax,zmax, honoured exactly "
                                  "(default: the input's bounding box grown by one cell size)");
   app.add_option("--refine-box", refine_boxes, "xmin,ymin,zmin,xmax,ymax,zmax:SIZE - cells overlapping the box get "
@@ -346,6 +348,13 @@ int main(int argc, char** argv)
     fopt.feature_angle = feature_angle;
     const HM::Feature_curves_3<K> features(domain, fopt);
     if(feature_size > 0) domain.set_feature_edges(features.edge_vertices());
+    std::vector<std::vector<Point_3>> user_lines;
+    for(const std::string& f : feature_files) HM::IO::read_polylines(f, user_lines, scale);
+    if(!user_lines.empty()) {
+      if(feature_size <= 0)
+        std::cerr << "hexmesh: warning: --features without --feature-size: the feature lines refine nothing\n";
+      domain.add_feature_polylines(user_lines);
+    }
     const double t_features = since(t);
     typedef HM::Feature_curves_3<K> FC;
     if(!quiet)
@@ -502,7 +511,8 @@ int main(int argc, char** argv)
                        {"open_edges", features.number_of_edges(FC::OPEN)},
                        {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},
                        {"part_border_edges", features.number_of_edges(FC::PATCH_BORDER)},
-                       {"curves", features.curves().size()}, {"corners", features.corners().size()}};
+                       {"curves", features.curves().size()}, {"corners", features.corners().size()},
+                       {"user_lines", user_lines.size()}, {"user_segments", domain.feature_segments().size()}};
       nlohmann::ordered_json jl = nlohmann::ordered_json::array();
       for(const HM::Region_leak& l : leaks) {
         auto bj = [](const CGAL::Bbox_3& b) { return nlohmann::ordered_json{b.xmin(), b.ymin(), b.zmin(), b.xmax(), b.ymax(), b.zmax()}; };

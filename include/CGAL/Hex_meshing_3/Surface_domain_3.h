@@ -15,6 +15,7 @@
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Bbox_3.h>
 #include <CGAL/Side_of_triangle_mesh.h>
@@ -150,7 +151,7 @@ public:
     }
     std::sort(keys.begin(), keys.end());
     m_feature_mask.assign(m_indices.size(), 0);
-    m_has_features = false;
+    m_has_features = !m_feature_segments.empty();
     for(std::size_t t = 0; t < m_indices.size(); ++t)
       for(int k = 0; k < 3; ++k)
         if(std::binary_search(keys.begin(), keys.end(), edge_key(m_indices[t][std::size_t(k)], m_indices[t][std::size_t((k + 1) % 3)]))) {
@@ -158,12 +159,37 @@ public:
           m_has_features = true;
         }
   }
-  /// are there feature edges?
+  /*!
+   * adds user feature lines (polylines given as point sequences, anywhere in space, e.g. read by
+   * `IO::read_polylines()`): cells they meet are refined to the criteria's feature size like the
+   * cells meeting feature edges.
+   */
+  void add_feature_polylines(const std::vector<std::vector<Point_3>>& polylines)
+  {
+    for(const auto& pl : polylines)
+      for(std::size_t i = 1; i < pl.size(); ++i)
+        if(pl[i - 1] != pl[i]) m_feature_segments.emplace_back(pl[i - 1], pl[i]);
+    m_segment_tree.reset();
+    if(!m_feature_segments.empty()) {
+      m_segment_tree = std::make_unique<Segment_tree>(m_feature_segments.begin(), m_feature_segments.end());
+      m_has_features = true;
+      if(m_feature_mask.size() != m_indices.size()) m_feature_mask.assign(m_indices.size(), 0);
+    }
+  }
+  /// the segments of the user feature lines
+  const std::vector<typename GeomTraits::Segment_3>& feature_segments() const { return m_feature_segments; }
+  /// are there feature edges or user feature lines?
   bool has_feature_edges() const { return m_has_features; }
+  /// exact: does the closed box `b` meet a user feature line?
+  bool do_intersect_feature_lines(const Bbox_3& b) const
+  {
+    if(!m_segment_tree) return false;
+    return m_segment_tree->do_intersect(typename GeomTraits::Iso_cuboid_3(b));
+  }
   /// exact: does the closed box `b` meet a feature edge of triangle `i`?
   bool do_intersect_feature(const Bbox_3& b, std::size_t i) const
   {
-    if(!m_has_features || m_feature_mask[i] == 0) return false;
+    if(!m_has_features || i >= m_feature_mask.size() || m_feature_mask[i] == 0) return false;
     for(int k = 0; k < 3; ++k)
       if(m_feature_mask[i] & (1u << k)) {
         const typename GeomTraits::Segment_3 s(m_points[m_indices[i][std::size_t(k)]], m_points[m_indices[i][std::size_t((k + 1) % 3)]]);
@@ -783,6 +809,10 @@ private:
   std::vector<bool> m_two_sided;
   std::vector<std::uint8_t> m_feature_mask;   // bit k: edge (k, k+1) of the triangle is a feature
   bool m_has_features = false;
+  typedef typename std::vector<typename GeomTraits::Segment_3>::const_iterator Segment_iterator;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GeomTraits, CGAL::AABB_segment_primitive<GeomTraits, Segment_iterator>>> Segment_tree;
+  std::vector<typename GeomTraits::Segment_3> m_feature_segments;
+  std::unique_ptr<Segment_tree> m_segment_tree;
   std::vector<std::string> m_patch_names;
   Bbox_3 m_bbox;
   Input_summary m_summary;

@@ -738,6 +738,69 @@ void read_surface(const std::string& filename, Surface_soup<Point_3>& soup, doub
 
 /*!
  * \ingroup PkgHexMeshing3IO
+ * \brief reads feature lines from an OBJ file (optionally gzip-compressed): the `v` vertices and
+ * the `l` polylines (one-based or negative indices, `v/vt` forms accepted); coordinates are
+ * multiplied by `scale`. Appends to `polylines`.
+ * \throws Input_error with a one-line message naming the file and the cause
+ */
+template <typename Point_3>
+void read_polylines(const std::string& filename, std::vector<std::vector<Point_3>>& polylines, double scale = 1.0)
+{
+  std::ifstream in(filename, std::ios::binary);
+  if(!in) throw Input_error(filename + ": cannot open the file for reading", Input_error_cause::UNREADABLE);
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if(internal::is_gzip(data)) data = internal::gunzip(data, filename);
+  if(data.empty()) throw Input_error(filename + ": the file is empty", Input_error_cause::EMPTY);
+  internal::Text_cursor c{data.data(), data.data() + data.size()};
+  std::vector<Point_3> pts;
+  std::vector<std::pair<std::vector<long long>, std::size_t>> lines;
+  while(c.p < c.end) {
+    const std::string_view kw = c.token();
+    if(kw == "v") {
+      double x[3];
+      for(int k = 0; k < 3; ++k)
+        if(!internal::parse_double(c.token(), x[k]))
+          throw Input_error(filename + ": line " + std::to_string(c.line) + ": a vertex needs three numbers",
+                            Input_error_cause::MALFORMED);
+      if(!std::isfinite(x[0]) || !std::isfinite(x[1]) || !std::isfinite(x[2]))
+        throw Input_error(filename + ": line " + std::to_string(c.line) + ": a coordinate is not a finite number",
+                          Input_error_cause::NON_FINITE);
+      pts.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
+    } else if(kw == "l") {
+      std::vector<long long> ids;
+      for(std::string_view t = c.token(); !t.empty(); t = c.token()) {
+        const std::string_view idx = t.substr(0, t.find('/'));
+        long long i = 0;
+        const auto r = std::from_chars(idx.data(), idx.data() + idx.size(), i);
+        if(r.ec != std::errc() || r.ptr != idx.data() + idx.size() || i == 0 || i > (long long)UINT32_MAX ||
+           i < -(long long)pts.size())
+          throw Input_error(filename + ": line " + std::to_string(c.line) + ": '" + std::string(t.substr(0, 40)) +
+                            "' is not a vertex index", Input_error_cause::BAD_INDEX);
+        ids.push_back(i < 0 ? (long long)pts.size() + 1 + i : i);
+      }
+      if(ids.size() < 2)
+        throw Input_error(filename + ": line " + std::to_string(c.line) + ": a line needs two vertices",
+                          Input_error_cause::MALFORMED);
+      lines.push_back({ids, c.line});
+    }
+    c.next_line();
+  }
+  if(lines.empty()) throw Input_error(filename + ": no 'l' polyline (is this an OBJ file of lines?)", Input_error_cause::NO_SURFACE);
+  for(const auto& l : lines) {
+    std::vector<Point_3> pl;
+    for(long long i : l.first) {
+      if(i > (long long)pts.size())
+        throw Input_error(filename + ": line " + std::to_string(l.second) + ": a line refers to vertex " +
+                          std::to_string(i) + " but the file has " + std::to_string(pts.size()) + " vertices",
+                          Input_error_cause::BAD_INDEX);
+      pl.push_back(pts[std::size_t(i - 1)]);
+    }
+    polylines.push_back(std::move(pl));
+  }
+}
+
+/*!
+ * \ingroup PkgHexMeshing3IO
  * \brief reads a surface file as a plain triangle soup (parts ignored); see the other overload.
  */
 template <typename Point_3>

@@ -112,7 +112,7 @@ public:
     std::uint8_t flags = 0;
     bool is_leaf() const { return child == 0; }
   };
-  enum Flags : std::uint8_t { CUT = 1, KEPT = 2, LEAK = 4, FEATURE = 8 };
+  enum Flags : std::uint8_t { CUT = 1, KEPT = 2, LEAK = 4, FEATURE = 8, LINE = 16 };
 
   /// statistics of the last run
   struct Statistics
@@ -159,6 +159,7 @@ public:
   void init_box()
   {
     m_use_features = m_domain.has_feature_edges() && m_criteria.feature_size() > 0;
+    m_use_lines = m_use_features && !m_domain.feature_segments().empty();
     const FT size = m_criteria.initial_size();
     if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
       throw Input_error("the cell size must be a positive number", Input_error_cause::BAD_PARAMETER);
@@ -223,6 +224,9 @@ public:
           }
     }
     for(std::uint32_t id = 0; id < roots; ++id) decide_cut(id);
+    if(m_use_lines)   // user feature lines may lie anywhere, cut cells or not
+      for(std::uint32_t id = 0; id < roots; ++id)
+        if(m_domain.do_intersect_feature_lines(node_bbox(m_nodes[id]))) m_nodes[id].flags |= LINE | FEATURE;
     m_leaves = roots;
   }
 
@@ -347,6 +351,9 @@ public:
       }
       for(int o = 0; o < 8; ++o) decide_cut(first + o);
     }
+    if(parent.flags & LINE)   // only the children of a cell meeting a user line can meet it
+      for(int o = 0; o < 8; ++o)
+        if(m_domain.do_intersect_feature_lines(node_bbox(m_nodes[first + o]))) m_nodes[first + o].flags |= LINE | FEATURE;
   }
 
   template <typename Visitor>
@@ -829,7 +836,7 @@ private:
   std::vector<std::vector<std::uint32_t>> m_by_level;
   std::vector<int> m_component;
   std::vector<Region_leak> m_leaks;
-  bool m_use_features = false;
+  bool m_use_features = false, m_use_lines = false;
   std::size_t m_leaves = 0;
   Statistics m_stats;
 };
