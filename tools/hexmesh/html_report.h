@@ -268,8 +268,11 @@ inline std::string svg_histogram(const std::string& name, const Json& h)
              num(fs) + "\" fill=\"#333333\">" + t + "</text>\n";
     }
   }
-  // x tick labels at bin edges, at most ~8
-  const std::size_t step = (n + 7) / 8;
+  // x tick labels at bin edges: every step-th edge, step the least divisor of n giving at most 10
+  // intervals (else ceil(n / 8), and the last edge labelled too)
+  std::size_t step = 1;
+  while(step < n && (n % step != 0 || n / step > 10)) ++step;
+  if(n / step > 10 || step == n) step = (n + 7) / 8;   // n > 0 here
   for(std::size_t i = 0; i <= n; i += step) {
     const double x = L + bw * double(i);
     o += "<path d=\"M" + num(x) + " " + num(T + ph) + "v4\" stroke=\"#333333\" stroke-width=\"1\"/>\n";
@@ -480,7 +483,7 @@ inline std::vector<P2> convex_hull(std::vector<P2>& pts)
 struct Slice_result
 {
   std::string svg;
-  std::size_t crossing_cells = 0, drawn_cells = 0, degenerate = 0, boundary_segments = 0;
+  std::size_t crossing_cells = 0, drawn_cells = 0, degenerate = 0, crossing_boundary_faces = 0, boundary_segments = 0;
   std::vector<std::size_t> segments_per_patch;
 };
 
@@ -496,8 +499,8 @@ Slice_result slice_svg(const HexMesh& mesh, const std::vector<std::array<double,
   const double du = hi[U] - lo[U], dv = hi[V] - lo[V];
   const double ext = (std::max)(du, dv);
   const double s = ext > 0 ? 600.0 / ext : 1.0;
-  const double L = 58, R = 16, T = 26, B = 40;
-  const double W = L + R + du * s, H = T + B + dv * s;
+  const double L = 80, R = 16, T = 26, B = 40;
+  const double W = (std::max)(320.0, L + R + du * s), H = T + B + dv * s;   // room for the labels
   auto to_px = [&](const P2& p, std::string& out) {
     px(out, L + (p[0] - lo[U]) * s);
     out += ' ';
@@ -547,7 +550,8 @@ Slice_result slice_svg(const HexMesh& mesh, const std::vector<std::array<double,
     double mn = std::numeric_limits<double>::infinity(), mx = -mn;
     for(int k = 0; k < 4; ++k) { const double x = X[bf.vertices[k]][axis]; mn = (std::min)(mn, x); mx = (std::max)(mx, x); }
     if(!(mn <= c && c < mx)) continue;
-    if(r.boundary_segments >= max_polygons) break;
+    ++r.crossing_boundary_faces;
+    if(r.boundary_segments >= max_polygons) continue;
     pts.clear();
     for(int k = 0; k < 4; ++k) add_point(X[bf.vertices[k]], X[bf.vertices[(k + 1) % 4]]);
     if(pts.size() < 2) continue;
@@ -599,8 +603,12 @@ Slice_result slice_svg(const HexMesh& mesh, const std::vector<std::array<double,
          "\" text-anchor=\"middle\" fill=\"#555555\">no cell crosses this plane</text>\n";
   // axes: coordinates at the ends
   const double yb = T + dv * s;
-  o += "<text x=\"" + num(L) + "\" y=\"" + num(yb + 14) + "\" text-anchor=\"start\">" + num(lo[U]) + "</text>\n";
-  o += "<text x=\"" + num(L + du * s) + "\" y=\"" + num(yb + 14) + "\" text-anchor=\"end\">" + num(hi[U]) + "</text>\n";
+  if(du * s >= 150) {
+    o += "<text x=\"" + num(L) + "\" y=\"" + num(yb + 14) + "\" text-anchor=\"start\">" + num(lo[U]) + "</text>\n";
+    o += "<text x=\"" + num(L + du * s) + "\" y=\"" + num(yb + 14) + "\" text-anchor=\"end\">" + num(hi[U]) + "</text>\n";
+  } else
+    o += "<text x=\"" + num(L + du * s / 2) + "\" y=\"" + num(yb + 14) + "\" text-anchor=\"middle\">" + num(lo[U]) +
+         " &#8230; " + num(hi[U]) + "</text>\n";
   o += "<text x=\"" + num(L + du * s / 2) + "\" y=\"" + num(yb + 30) + "\" text-anchor=\"middle\" font-style=\"italic\">" +
        std::string(names[U]) + " &#8594;</text>\n";
   o += "<text x=\"" + num(L - 4) + "\" y=\"" + num(yb) + "\" text-anchor=\"end\">" + num(lo[V]) + "</text>\n";
@@ -716,14 +724,18 @@ std::string html_report(const nlohmann::ordered_json& report, const HexMesh& mes
     out += "<div class=\"figs\">\n";
     static const char* const names[3] = {"x", "y", "z"};
     for(int a = 0; a < 3; ++a) {
-      const double c = 0.5 * (lo[a] + hi[a]);
+      double c = 0.5 * (lo[a] + hi[a]);
+      if(std::abs(c) < 1e-12 * (hi[a] - lo[a])) c = 0;   // rounding noise of a symmetric box: print 0
       const Slice_result r = slice_svg(mesh, X, cell_scaled_jacobian, a, c, lo, hi, max_polygons_per_slice);
       out += "<figure>\n" + r.svg + "<figcaption>Plane " + std::string(names[a]) + " = " + num(c) + ": " +
-             std::to_string(r.crossing_cells) + " cells crossed, " + std::to_string(r.boundary_segments) +
+             std::to_string(r.crossing_cells) + " cells crossed, " + std::to_string(r.crossing_boundary_faces) +
              " boundary faces.";
       if(r.drawn_cells + r.degenerate < r.crossing_cells)
         out += " <span class=\"note\">Capped: " + std::to_string(r.drawn_cells) + " of " +
                std::to_string(r.crossing_cells) + " cells drawn (the first by index).</span>";
+      if(r.boundary_segments >= max_polygons_per_slice && r.boundary_segments < r.crossing_boundary_faces)
+        out += " <span class=\"note\">" + std::to_string(r.boundary_segments) + " of " +
+               std::to_string(r.crossing_boundary_faces) + " boundary faces drawn.</span>";
       if(r.degenerate) out += " " + std::to_string(r.degenerate) + " degenerate cross-sections skipped.";
       out += "<br>";
       bool any = false;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 typedef CGAL::Exact_predicates_inexact_constructions_kernel K;
 namespace HM = CGAL::Hex_meshing_3;
@@ -19,6 +20,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
   const std::string buffer(reinterpret_cast<const char*>(data), size);
   const std::string format = HEX_MESHING_3_FUZZ_FORMAT;
+  if(format == "lines") {   // feature lines (OBJ polylines)
+    std::vector<std::vector<K::Point_3>> lines;
+    try {
+      HM::IO::read_polylines_buffer(buffer, "fuzz.obj", lines);
+    } catch(const HM::Input_error& e) {
+      HM_CHECK(std::string(e.what()).rfind("fuzz.obj: ", 0) == 0);
+      return 0;
+    }
+    HM_CHECK(!lines.empty());
+    for(const auto& l : lines) HM_CHECK(l.size() >= 2);
+    return 0;
+  }
   HM::IO::Surface_soup<K::Point_3> soup;
   try {
     HM::IO::read_surface_buffer(buffer, "fuzz." + format, format, soup);

@@ -738,17 +738,17 @@ void read_surface(const std::string& filename, Surface_soup<Point_3>& soup, doub
 
 /*!
  * \ingroup PkgHexMeshing3IO
- * \brief reads feature lines from an OBJ file (optionally gzip-compressed): the `v` vertices and
+ * \brief parses feature lines held in memory as OBJ (optionally gzip-compressed): the `v` vertices and
  * the `l` polylines (one-based or negative indices, `v/vt` forms accepted); coordinates are
  * multiplied by `scale`. Appends to `polylines`.
  * \throws Input_error with a one-line message naming the file and the cause
  */
 template <typename Point_3>
-void read_polylines(const std::string& filename, std::vector<std::vector<Point_3>>& polylines, double scale = 1.0)
+void read_polylines_buffer(std::string data, const std::string& filename, std::vector<std::vector<Point_3>>& polylines,
+                           double scale = 1.0)
 {
-  std::ifstream in(filename, std::ios::binary);
-  if(!in) throw Input_error(filename + ": cannot open the file for reading", Input_error_cause::UNREADABLE);
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if(!(std::isfinite(scale) && scale > 0))
+    throw Input_error(filename + ": the scale factor must be a positive number", Input_error_cause::BAD_PARAMETER);
   if(internal::is_gzip(data)) data = internal::gunzip(data, filename);
   if(data.empty()) throw Input_error(filename + ": the file is empty", Input_error_cause::EMPTY);
   internal::Text_cursor c{data.data(), data.data() + data.size()};
@@ -797,6 +797,21 @@ void read_polylines(const std::string& filename, std::vector<std::vector<Point_3
     }
     polylines.push_back(std::move(pl));
   }
+}
+
+/*!
+ * \ingroup PkgHexMeshing3IO
+ * \brief reads feature lines from an OBJ file; see `read_polylines_buffer()` for the format.
+ * \throws Input_error with a one-line message naming the file and the cause
+ */
+template <typename Point_3>
+void read_polylines(const std::string& filename, std::vector<std::vector<Point_3>>& polylines, double scale = 1.0)
+{
+  std::ifstream in(filename, std::ios::binary);
+  if(!in) throw Input_error(filename + ": cannot open the file for reading", Input_error_cause::UNREADABLE);
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if(in.bad()) throw Input_error(filename + ": read error", Input_error_cause::UNREADABLE);
+  read_polylines_buffer(std::move(data), filename, polylines, scale);
 }
 
 /*!
