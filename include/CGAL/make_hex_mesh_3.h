@@ -59,6 +59,12 @@ namespace CGAL {
  *     \cgalParamType{an output iterator with value type `Hex_meshing_3::Region_leak`}
  *     \cgalParamDefault{leaks are removed silently}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{statistics}
+ *     \cgalParamDescription{receives the counts of the run (grid leaves, cut leaves, balance splits,
+ *       trimmed cells, cells cut off from the seed, ...)}
+ *     \cgalParamType{`Hex_meshing_3::Meshing_statistics*`}
+ *     \cgalParamDefault{not reported}
+ *   \cgalParamNEnd
  *   \cgalParamNBegin{max_cells}
  *     \cgalParamDescription{stop refining before a level would take the grid beyond this many
  *       leaf cells (balance may add a few more); the status is then `CELL_LIMIT_REACHED`}
@@ -113,6 +119,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     auto it = get_parameter(np, HNP::leaks);
     for(const Hex_meshing_3::Region_leak& l : mesher.leaks()) *it++ = l;
   }
+  if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::statistics_t>::value)
+    *get_parameter(np, HNP::statistics) = mesher.statistics();
   return status;
 }
 

@@ -380,12 +380,20 @@ int main(int argc, char** argv)
     }
     const std::size_t cell_limit = max_cells > 0 ? max_cells : std::size_t(-1);
     // (CGAL's `visitor` must come last: its pack only chains CGAL's own names)
+    HM::Meshing_statistics stats;
     if(has_seed)
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
-                                                               .leaks(std::back_inserter(leaks)).visitor(std::ref(progress)));
+                                                               .leaks(std::back_inserter(leaks)).statistics(&stats)
+                                                               .visitor(std::ref(progress)));
     else
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
-                                                               .leaks(std::back_inserter(leaks)).visitor(std::ref(progress)));
+                                                               .leaks(std::back_inserter(leaks)).statistics(&stats)
+                                                               .visitor(std::ref(progress)));
+    if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
+      std::cerr << "hexmesh: " << stats.trimmed_cells << " cells trimmed (fingers and plates one cell thick)"
+                << (stats.disconnected_cells ? ", " + std::to_string(stats.disconnected_cells) +
+                                                   " cells cut off from the seed's region by trimming removed" : std::string())
+                << "\n";
     if(status == HM::Status::CANCELED)
       std::cerr << "hexmesh: warning: cancelled; the valid, coarser mesh reached so far is kept\n";
     if(status == HM::Status::CELL_LIMIT_REACHED)
@@ -563,7 +571,11 @@ int main(int argc, char** argv)
         for(const auto& w : progress.work) if(w.first == "classify") leaves = w.second;
         for(const auto& s : progress.seconds)
           if(s.first == "refine" || s.first == "balance" || s.first == "classify") grid_seconds += s.second;
-        j["grid"] = {{"leaf_cells", leaves}, {"seconds", grid_seconds},
+        j["grid"] = {{"initial_cells", {stats.initial_cells[0], stats.initial_cells[1], stats.initial_cells[2]}},
+                     {"leaf_cells", leaves}, {"cut_leaves", stats.cut_leaves}, {"balance_splits", stats.balance_splits},
+                     {"components", stats.components}, {"trimmed_cells", stats.trimmed_cells},
+                     {"disconnected_cells", stats.disconnected_cells}, {"max_level", stats.max_level_reached},
+                     {"seconds", grid_seconds},
                      {"leaf_cells_per_second", grid_seconds > 0 ? double(leaves) / grid_seconds : 0.0}};
       }
       auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
@@ -573,7 +585,7 @@ int main(int argc, char** argv)
       for(const std::string& r : reports) {
         std::ofstream os(r);
         if(fs::path(r).extension() == ".html") os << html_report(j, mesh, q.scaled_jacobian);
-        else os << j.dump(2) << "\n";
+        else os << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";   // names from files may not be UTF-8
         if(!os) { std::cerr << "hexmesh: cannot write " << r << "\n"; return OUTPUT; }
       }
     }

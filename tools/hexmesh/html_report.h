@@ -428,7 +428,7 @@ inline std::string svg_colour_legend(bool has_inverted, bool has_missing)
 {
   std::string o;
   const double L = 10, T = 18, bw = 9, bh = 14;
-  const double W = L + bw * nb_levels + 190;
+  const double W = L + bw * nb_levels + 260;
   o += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(W) + "\" height=\"52\" viewBox=\"0 0 " + num(W) +
        " 52\" font-family=\"sans-serif\" font-size=\"11\">\n";
   o += "<text x=\"" + num(L) + "\" y=\"12\">scaled Jacobian</text>\n";

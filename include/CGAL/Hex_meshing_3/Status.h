@@ -6,7 +6,9 @@
 
 #include <CGAL/Bbox_3.h>
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -89,6 +91,23 @@ public:
 
 private:
   Input_error_cause m_cause;
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Functions
+ * \brief what `make_hex_mesh_3()` did, for reports (named parameter `statistics`).
+ */
+struct Meshing_statistics
+{
+  std::array<std::uint32_t, 3> initial_cells = {{0, 0, 0}};   ///< cells of the initial grid per axis
+  std::size_t leaves = 0;              ///< leaf cells of the balanced grid
+  std::size_t cut_leaves = 0;          ///< of which cut by the surface
+  std::size_t balance_splits = 0;      ///< cells split by the 2:1 balance
+  std::size_t components = 0;          ///< connected components of uncut leaves
+  std::size_t trimmed_cells = 0;       ///< kept cells removed by trimming (one cell thick)
+  std::size_t disconnected_cells = 0;  ///< seeded region: cells cut off from the seed by trimming
+  std::size_t kept_cells = 0;          ///< cells of the mesh
+  int max_level_reached = 0;           ///< the finest level of the grid
 };
 
 /*!

@@ -21,6 +21,7 @@ enum max_cells_t { max_cells };
 enum region_seed_t { region_seed };
 enum meshing_box_t { meshing_box };
 enum leaks_t { leaks };
+enum statistics_t { statistics };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -44,6 +45,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::leaks_t, Named_parameters>
   leaks(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::statistics_t, Named_parameters>
+  statistics(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -66,6 +71,10 @@ Named_parameters<V, internal_np::meshing_box_t> meshing_box(const V& v) { return
 /// an output iterator receiving the `Region_leak`s of a seeded region (largest first)
 template <typename V>
 Named_parameters<V, internal_np::leaks_t> leaks(const V& v) { return { v }; }
+
+/// a pointer to a `Meshing_statistics` that receives the counts of the run
+template <typename V>
+Named_parameters<V, internal_np::statistics_t> statistics(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }

@@ -115,13 +115,7 @@ public:
   enum Flags : std::uint8_t { CUT = 1, KEPT = 2, LEAK = 4, FEATURE = 8, LINE = 16 };
 
   /// statistics of the last run
-  struct Statistics
-  {
-    std::size_t leaves = 0, cut_leaves = 0, kept_cells = 0, balance_splits = 0, components = 0, trimmed_cells = 0;
-    std::size_t disconnected_cells = 0;   ///< seeded region: cells cut off from the seed by trimming
-    int max_level_reached = 0;
-    std::array<std::uint32_t, 3> initial_cells = {{0, 0, 0}};
-  };
+  typedef Meshing_statistics Statistics;
 
   Octree_mesher_3(const MeshDomain& domain, const Criteria& criteria, const Bbox_3& box)
     : m_domain(domain), m_criteria(criteria), m_box(box)
