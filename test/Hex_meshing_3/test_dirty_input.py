@@ -437,6 +437,29 @@ def main():
     r = run([args.hexmesh, os.path.join(D, "cube.off"), "-o", os.path.join(R, "x" * 300 + ".vtu")])
     check(r.returncode in (1, 3) and r.stderr.startswith("hexmesh: "), f"an impossible output name: exit {r.returncode}, no crash")
 
+    # 8b. features: detected, reported, refined along; user lines
+    print("[features]")
+    lines = os.path.join(W, "lines.obj.gz")
+    with gzip.open(lines, "wt") as f:
+        f.write("v -0.3 0 0\nv 0.3 0 0\nl 1 2\n")
+    rep = os.path.join(W, "features.json")
+    hexmesh(ctx, [os.path.join(D, "fandisk.off")], [os.path.join(W, "features.vtu")],
+            ["-q", "--size", "0.1", "--surface-size", "0.05", "--feature-size", "0.0125", "--features", lines], rep)
+    j = json.load(open(rep))
+    fe = j["features"]
+    check(fe["sharp_edges"] == 722 and fe["corners"] == 25 and fe["curves"] == 35 and fe["user_lines"] == 1,
+          f"fandisk: 722 sharp edges, 35 curves, 25 corners, 1 user line reported ({fe})")
+    rep0 = os.path.join(W, "features0.json")
+    hexmesh(ctx, [os.path.join(D, "fandisk.off")], [os.path.join(W, "features0.vtu")],
+            ["-q", "--size", "0.1", "--surface-size", "0.05"], rep0)
+    j0 = json.load(open(rep0))
+    check(j["grid"]["max_level"] == j0["grid"]["max_level"] + 2 and j["grid"]["leaf_cells"] > j0["grid"]["leaf_cells"],
+          f"--feature-size 0.0125 refines two levels below the surface size 0.05 (max level {j0['grid']['max_level']} -> "
+          f"{j['grid']['max_level']}, leaves {j0['grid']['leaf_cells']} -> {j['grid']['leaf_cells']})")
+    r = run([args.hexmesh, os.path.join(D, "fandisk.off"), "-o", os.path.join(W, "x.vtu"), "--features",
+             os.path.join(W, "missing.obj"), "--feature-size", "0.1"])
+    check(r.returncode == 2 and "missing.obj: cannot open" in r.stderr, "a missing feature-line file is an input error")
+
     # 8. reports: JSON with histograms and worst cells; self-contained HTML with SVG
     print("[reports]")
     rj, rh = os.path.join(W, "rep.json"), os.path.join(W, "rep.html")
