@@ -160,7 +160,6 @@ static std::vector<Rule> parse_rules(const std::vector<std::string>& v, const st
   return rules;
 }
 
-static std::string human_count(std::size_t n) { return std::to_string(n); }
 
 /// histograms, face warpage summary and the worst elements with their locations
 static void add_quality_details(nlohmann::ordered_json& jq, const Mesh& mesh, const HM::Polyhedral_mesh_3& pm,
@@ -320,7 +319,7 @@ int main(int argc, char** argv)
     soup = HM::IO::Surface_soup<Point_3>();
     const auto& sum = domain.input_summary();
     std::vector<std::string> repairs;
-    auto note = [&](std::size_t n, const std::string& what) { if(n) repairs.push_back(human_count(n) + " " + what); };
+    auto note = [&](std::size_t n, const std::string& what) { if(n) repairs.push_back(std::to_string(n) + " " + what); };
     note(sum.merged_points, "duplicate points merged");
     note(sum.degenerate_triangles, "degenerate triangles removed");
     note(sum.duplicate_triangles, "duplicate triangles removed");

@@ -47,6 +47,10 @@ public:
   /// that lattice coordinates fit in 21 bits
   int max_level() const;
 
+  /// the size asked for cells meeting feature edges or lines of the domain (0: none); when
+  /// positive, the mesher sets `Cell::meets_feature`
+  FT feature_size() const;
+
   /// @}
 
   /// \name Operations

@@ -74,5 +74,17 @@ public:
   /// the index of a triangle closest to `p`
   std::size_t closest_triangle(const Point_3& p) const;
 
+  /// are there feature edges or feature lines (for the criteria's feature size)?
+  bool has_feature_edges() const;
+
+  /// does the closed box `b` meet a feature edge of triangle `i`? Must be exact.
+  bool do_intersect_feature(const CGAL::Bbox_3& b, std::size_t i) const;
+
+  /// the segments of the feature lines that need not lie on the surface (may be empty)
+  const std::vector<Geom_traits::Segment_3>& feature_segments() const;
+
+  /// does the closed box `b` meet one of `feature_segments()`? Must be exact.
+  bool do_intersect_feature_lines(const CGAL::Bbox_3& b) const;
+
   /// @}
 };

@@ -72,6 +72,9 @@ public:
   /// the names of the patches: the six box faces, then the parts of the surface
   std::vector<std::string> patch_names;
 
+  /// the OpenFOAM type of each patch (`patch`, `wall`, `symmetryPlane`, ...)
+  std::vector<std::string> patch_types;
+
   /// the meshing box
   CGAL::Bbox_3 box;
 
@@ -82,6 +85,9 @@ public:
 
   /// empties the mesh
   void clear();
+
+  /// the type of patch `p`: `patch_types[p]`, or `patch` for the box faces and `wall` otherwise
+  std::string patch_type(std::size_t p) const;
 
   /// @}
 };

@@ -741,28 +741,17 @@ private:
       typedef CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t> Box;
       std::vector<Box> boxes;
       for(std::uint32_t r : closed_roots) boxes.push_back(Box(cbox[r], r));
-      auto contains = [](const Bbox_3& a, const Bbox_3& b) {   // a contains b
-        return a.xmin() <= b.xmin() && a.ymin() <= b.ymin() && a.zmin() <= b.zmin() && a.xmax() >= b.xmax() &&
-               a.ymax() >= b.ymax() && a.zmax() >= b.zmax();
-      };
+      auto contains = [](const Bbox_3& a, const Bbox_3& b) { return a + b == a; };
       // |winding number| of component r (as oriented now) at p, by direct summation
       auto winding = [&](std::uint32_t r, const std::array<double, 3>& p) {
         double w = 0;
         for(std::uint32_t f : members[r]) {
-          std::array<double, 3> x[3];
+          double t[9];
           for(int k = 0; k < 3; ++k) {
-            x[k] = internal_vec(m_points[m_indices[f][std::size_t(k)]]);
-            for(int d = 0; d < 3; ++d) x[k][std::size_t(d)] -= p[std::size_t(d)];
+            const auto v = internal_vec(m_points[m_indices[f][std::size_t(flipped[f] && k ? 3 - k : k)]]);
+            std::copy(v.begin(), v.end(), t + 3 * k);
           }
-          if(flipped[f]) std::swap(x[1], x[2]);
-          const double la = std::sqrt(x[0][0] * x[0][0] + x[0][1] * x[0][1] + x[0][2] * x[0][2]);
-          const double lb = std::sqrt(x[1][0] * x[1][0] + x[1][1] * x[1][1] + x[1][2] * x[1][2]);
-          const double lc = std::sqrt(x[2][0] * x[2][0] + x[2][1] * x[2][1] + x[2][2] * x[2][2]);
-          const double det = x[0][0] * (x[1][1] * x[2][2] - x[1][2] * x[2][1]) - x[0][1] * (x[1][0] * x[2][2] - x[1][2] * x[2][0]) +
-                             x[0][2] * (x[1][0] * x[2][1] - x[1][1] * x[2][0]);
-          auto dot = [](const std::array<double, 3>& u, const std::array<double, 3>& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
-          const double den = la * lb * lc + dot(x[0], x[1]) * lc + dot(x[1], x[2]) * la + dot(x[2], x[0]) * lb;
-          w += 2 * std::atan2(det, den);
+          w += internal::Fast_winding_number_3::solid_angle(p, t);
         }
         return std::abs(w) / (4 * CGAL_PI);
       };

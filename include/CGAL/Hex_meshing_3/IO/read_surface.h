@@ -55,7 +55,6 @@ struct Surface_soup
   std::vector<std::string> part_names;
   std::vector<std::string> files;       ///< the files read, in order
   std::size_t polygons = 0;             ///< polygons read (before splitting into triangles)
-  std::vector<std::string> warnings;    ///< one line each, naming the file
 
   /// index of the part named `name`, created if needed (parts of the same name are one part)
   int part(const std::string& name)
@@ -162,6 +161,17 @@ struct Text_cursor
     while(p < end && (blank(*p) || *p == '\n')) { if(*p == '\n') ++line; ++p; }
     return token();
   }
+  /// throws "name: line N: what"; at the end of the buffer the cause is `TRUNCATED` and the
+  /// message says so
+  [[noreturn]] void fail(const std::string& name, const std::string& what,
+                         Input_error_cause cause = Input_error_cause::MALFORMED)
+  {
+    skip_blanks();
+    const bool at_end = p >= end;
+    throw Input_error(name + ": line " + std::to_string(line) + ": " + what +
+                      (at_end && what.find("truncated") == std::string::npos ? " (the file ends there: truncated)" : ""),
+                      at_end ? Input_error_cause::TRUNCATED : cause);
+  }
   /// the rest of the line, trimmed
   std::string rest_of_line()
   {
@@ -224,7 +234,6 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
   int part = -1;   // created at the first face, so a file without groups is one part named after it
   std::string pending;   // empty: the part named after the file
   int stem_part = -1;
-  std::size_t ignored = 0;
   std::vector<std::size_t> poly;
   std::vector<std::pair<std::size_t, std::size_t>> face_ranges;   // checked once all vertices are known
   std::vector<std::int64_t> raw;   // raw one-based (resolved) indices of every face corner
@@ -236,9 +245,7 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
       double x[3];
       for(int k = 0; k < 3; ++k)
         if(!parse_double(c.token(), x[k]))
-          throw Input_error(name + ": line " + std::to_string(c.line) + ": a vertex needs three numbers" +
-                            (c.p >= c.end ? " (the file ends there: truncated)" : ""),
-                            c.p >= c.end ? Input_error_cause::TRUNCATED : Input_error_cause::MALFORMED);
+          c.fail(name, "a vertex needs three numbers");
       soup.points.push_back(Point_3(x[0] * scale, x[1] * scale, x[2] * scale));
     } else if(kw == "f") {
       const std::size_t first = raw.size();
@@ -275,9 +282,7 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
       if(n.empty() && kw == "g") n = "default";
       pending = n;
       part = -1;
-    } else if(!kw.empty() && kw[0] != '#') {
-      ++ignored;   // vt, vn, usemtl, mtllib, s, l, p, ...: not needed for a surface
-    }
+    }   // vt, vn, usemtl, mtllib, s, l, p, comments, ...: not needed for a surface
     c.next_line();
   }
   const std::size_t nv = soup.points.size() - base;
@@ -294,7 +299,6 @@ void read_OBJ_buffer(const std::string& data, const std::string& name, double sc
   }
   if(face_ranges.empty())
     throw Input_error(name + ": no face (is this an OBJ file?)", Input_error_cause::NO_SURFACE);
-  (void)ignored;
 }
 
 // ---- STL --------------------------------------------------------------------------------------
@@ -340,11 +344,7 @@ void read_STL_ascii(const std::string& data, const std::string& name, double sca
   std::size_t solids = 0, facets = 0;
   int stem_part = -1;
   auto fail = [&](const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED) {
-    c.skip_blanks();
-    const bool at_end = c.p >= c.end;
-    throw Input_error(name + ": line " + std::to_string(c.line) + ": " + what +
-                      (at_end && what.find("truncated") == std::string::npos ? " (the file ends there: truncated)" : ""),
-                      at_end ? Input_error_cause::TRUNCATED : cause);
+    c.fail(name, what, cause);
   };
   std::vector<std::size_t> poly;
   for(std::string_view t = c.any_token(); !t.empty(); t = c.any_token()) {
@@ -410,11 +410,7 @@ void read_OFF_buffer(const std::string& data, const std::string& name, double sc
 {
   Text_cursor c{data.data(), data.data() + data.size()};
   auto fail = [&](const std::string& what, Input_error_cause cause = Input_error_cause::MALFORMED) {
-    c.skip_blanks();
-    const bool at_end = c.p >= c.end;
-    throw Input_error(name + ": line " + std::to_string(c.line) + ": " + what +
-                      (at_end && what.find("truncated") == std::string::npos ? " (the file ends there: truncated)" : ""),
-                      at_end ? Input_error_cause::TRUNCATED : cause);
+    c.fail(name, what, cause);
   };
   // the next token of the data section, skipping comments and line ends
   auto next_line_start = [&]() {

@@ -31,13 +31,13 @@
 // them with {0,1,3,2,4,5,7,6} into its lexicographic order, i.e. reads them in VTK order. So the
 // hexahedra are written unchanged, and a cell with positive Jacobians in VTK order stays positive.
 
+#include <CGAL/Hex_meshing_3/IO/internal/patch_names.h>
 #include <CGAL/number_utils.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -45,57 +45,6 @@ namespace CGAL {
 namespace Hex_meshing_3 {
 namespace IO {
 
-// Helpers shared with write_MSH.h (identical there, hence the common guard).
-#ifndef CGAL_HEX_MESHING_3_IO_INTERNAL_PATCH_INFO
-#define CGAL_HEX_MESHING_3_IO_INTERNAL_PATCH_INFO
-namespace internal {
-
-template <typename M, typename = void>
-struct Has_patch_types : std::false_type {};
-template <typename M>
-struct Has_patch_types<M, std::void_t<decltype(std::declval<const M&>().patch_types)>> : std::true_type {};
-
-/// number of patches: the size of `patch_names`, or more if a boundary face refers to a larger index
-template <typename HexMesh>
-std::size_t number_of_patches(const HexMesh& mesh)
-{
-  std::size_t n = mesh.patch_names.size();
-  for(const auto& f : mesh.boundary_faces)
-    if(f.patch >= 0) n = (std::max)(n, std::size_t(f.patch) + 1);
-  return n;
-}
-
-/// the name of patch `p` (`"patch_<p>"` when `patch_names` has none)
-template <typename HexMesh>
-std::string patch_name(const HexMesh& mesh, std::size_t p)
-{
-  if(p < mesh.patch_names.size() && !mesh.patch_names[p].empty()) return mesh.patch_names[p];
-  return "patch_" + std::to_string(p);
-}
-
-/// the type of patch `p`: `patch_types[p]` when the mesh has it, else "patch" for the six box
-/// faces (p < 6) and "wall" for the others
-template <typename HexMesh>
-std::string patch_type(const HexMesh& mesh, std::size_t p)
-{
-  if constexpr(Has_patch_types<HexMesh>::value) {
-    if(p < mesh.patch_types.size() && !mesh.patch_types[p].empty()) return mesh.patch_types[p];
-  }
-  return p < 6 ? "patch" : "wall";
-}
-
-/// `s` with every character in `bad` and every control character replaced by `by`
-inline std::string replace_chars(const std::string& s, const char* bad, char by)
-{
-  std::string r = s;
-  for(char& c : r)
-    if(static_cast<unsigned char>(c) < 32 || c == 127 || std::string(bad).find(c) != std::string::npos)
-      c = by;
-  return r;
-}
-
-} // namespace internal
-#endif // CGAL_HEX_MESHING_3_IO_INTERNAL_PATCH_INFO
 
 /*!
  * \ingroup PkgHexMeshing3IO
@@ -116,7 +65,7 @@ inline std::string replace_chars(const std::string& s, const char* bad, char by)
  * Boundary faces with a negative patch index are not written.
  *
  * \tparam HexMesh a `Hex_mesh_3` (or a type with the same public members `points`, `hexahedra`,
- * `boundary_faces`, `patch_names`, `hanging_nodes` and optionally `patch_types`)
+ * `boundary_faces`, `patch_names`, `hanging_nodes` and `patch_type()`)
  * \return `false` if the file cannot be written
  */
 template <typename HexMesh>
@@ -134,7 +83,7 @@ bool write_Medit(const std::string& filename, const HexMesh& mesh)
   os << "# Written by Hex_meshing_3. Quadrilateral references are patches:\n";
   for(std::size_t p = 0; p < npatch; ++p)
     os << "# patch " << p + 1 << " = " << internal::replace_chars(internal::patch_name(mesh, p), "", ' ')
-       << " (" << internal::replace_chars(internal::patch_type(mesh, p), "", ' ') << ")\n";
+       << " (" << internal::replace_chars(mesh.patch_type(p), "", ' ') << ")\n";
   os << "# hanging nodes: " << mesh.hanging_nodes.size()
      << (mesh.hanging_nodes.empty() ? " (conformal mesh)\n\n" : " (non-conformal mesh, constraints not stored)\n\n");
 

@@ -572,8 +572,7 @@ public:
       m_nodes[start].flags &= std::uint8_t(~KEPT);
       for(std::size_t q = 0; q < queue.size(); ++q) {
         const std::uint32_t cur = queue[q];
-        const Cell c = make_cell(m_nodes[cur]);
-        const Bbox_3 cb = c.bbox();
+        const Bbox_3 cb = node_bbox(m_nodes[cur]);
         leak_of[cur] = int(m_leaks.size());
         ++leak.cells;
         leak.volume += (cb.xmax() - cb.xmin()) * (cb.ymax() - cb.ymin()) * (cb.zmax() - cb.zmin());
@@ -586,7 +585,7 @@ public:
               if(nj.flags & KEPT) { m_nodes[j].flags &= std::uint8_t(~KEPT); queue.push_back(j); }
             } else if(nj.flags & KEPT) {
               // a face between the leak and the region: the smaller of the two cells' faces
-              const Bbox_3 nb = make_cell(nj).bbox();
+              const Bbox_3 nb = node_bbox(nj);
               const int a = f / 2;
               double lo[3], hi[3];
               for(int k = 0; k < 3; ++k) {
@@ -626,7 +625,7 @@ public:
       for(std::size_t q = 0; q < queue.size(); ++q) {
         const std::uint32_t cur = queue[q];
         m_nodes[cur].flags &= std::uint8_t(~KEPT);
-        const Bbox_3 cb = make_cell(m_nodes[cur]).bbox();
+        const Bbox_3 cb = node_bbox(m_nodes[cur]);
         volume += (cb.xmax() - cb.xmin()) * (cb.ymax() - cb.ymin()) * (cb.zmax() - cb.zmin());
         for(int f = 0; f < 6; ++f)
           for_each_face_neighbour(cur, f, [&](std::uint32_t j) {
