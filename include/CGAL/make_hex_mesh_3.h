@@ -6,6 +6,7 @@
 
 #include <CGAL/Hex_mesh_criteria_3.h>
 #include <CGAL/Hex_meshing_3/Default_visitor.h>
+#include <CGAL/Hex_meshing_3/Feature_curves_3.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/parameters.h>
@@ -15,6 +16,7 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 
 namespace CGAL {
@@ -113,14 +115,41 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   Hex_meshing_3::Default_visitor default_visitor;
   Visitor visitor = choose_parameter(get_parameter_reference(np, internal_np::visitor), default_visitor);
 
+  const bool body_fitted = choose_parameter(get_parameter(np, HNP::body_fitted), true);
+  // the staircase keeps this many cell sizes (relative) between its surface vertices and the surface
+  const double buffer_gap = 0.4;
+
   Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
-  const Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor);
+  Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor, body_fitted ? buffer_gap : 0.0);
+  Hex_meshing_3::Meshing_statistics stats = mesher.statistics();
+  if(body_fitted && status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
+    typedef Hex_meshing_3::Feature_curves_3<GT> Features;
+    std::unique_ptr<Features> own;
+    const Features* features = choose_parameter(get_parameter(np, HNP::feature_curves), static_cast<const Features*>(nullptr));
+    if(!features) { own = std::make_unique<Features>(domain); features = own.get(); }
+    visitor.on_phase_begin("capture", out.number_of_cells());
+    Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features);
+    if(!capture.run(visitor)) status = Hex_meshing_3::Status::CANCELED;
+    visitor.on_phase_end("capture");
+    const auto& r = capture.report();
+    stats.buffer_cells = r.buffer_cells;
+    stats.surface_vertices = r.surface_vertices;
+    stats.curve_vertices = r.curve_vertices;
+    stats.corner_vertices = r.corner_vertices;
+    stats.cap_vertices = r.cap_vertices;
+    stats.curves_captured = r.curves_captured;
+    stats.curves_missed = r.curves_missed;
+    stats.optimisation_passes = r.optimisation_passes;
+    stats.unreached_vertices = r.unreached;
+    stats.removed_buffer_cells = r.removed_buffer_cells;
+    stats.kept_cells = out.number_of_cells();
+  }
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::leaks_t>::value) {
     auto it = get_parameter(np, HNP::leaks);
     for(const Hex_meshing_3::Region_leak& l : mesher.leaks()) *it++ = l;
   }
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::statistics_t>::value)
-    *get_parameter(np, HNP::statistics) = mesher.statistics();
+    *get_parameter(np, HNP::statistics) = stats;
   return status;
 }
 

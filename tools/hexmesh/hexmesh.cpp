@@ -196,7 +196,7 @@ int main(int argc, char** argv)
   std::string box_s, region = "inside";
   int max_level = 12;
   std::size_t max_cells = 0;
-  bool force = false, quiet = false, strict = false;
+  bool force = false, quiet = false, strict = false, staircase = false;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
                                          "(repeatable)")->required();
@@ -218,6 +218,7 @@ int main(int argc, char** argv)
   app.add_option("--max-level", max_level, "most refinement levels below the initial grid")->check(CLI::Range(0, 20));
   app.add_option("--max-cells", max_cells, "stop refining before the grid exceeds this many cells (the mesh stays valid; "
                                            "a warning says so)");
+  app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-name", patch_name_rules, "REGEX=NAME: rename the patches whose whole name matches REGEX "
                                                    "(NAME may use $1...); patches given the same name are merged (repeatable)");
@@ -383,11 +384,20 @@ int main(int argc, char** argv)
     if(has_seed)
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
+                                                               .body_fitted(!staircase).feature_curves(&features)
                                                                .visitor(std::ref(progress)));
     else
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
+                                                               .body_fitted(!staircase).feature_curves(&features)
                                                                .visitor(std::ref(progress)));
+    if(!quiet && !staircase)
+      std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
+                << stats.buffer_cells << " buffer cells, " << stats.surface_vertices << " vertices on the surface ("
+                << stats.curve_vertices << " on " << stats.curves_captured << " feature curves, " << stats.corner_vertices
+                << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curves_missed
+                << " curves missed, " << stats.unreached_vertices.size() << " vertices could not reach the surface, "
+                << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)\n";
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
       std::cerr << "hexmesh: " << stats.trimmed_cells << " cells trimmed (fingers and plates one cell thick)"
                 << (stats.disconnected_cells ? ", " + std::to_string(stats.disconnected_cells) +
@@ -570,6 +580,17 @@ int main(int argc, char** argv)
         for(const auto& w : progress.work) if(w.first == "classify") leaves = w.second;
         for(const auto& s : progress.seconds)
           if(s.first == "refine" || s.first == "balance" || s.first == "classify") grid_seconds += s.second;
+        if(!staircase) {
+          nlohmann::ordered_json un = nlohmann::ordered_json::array();
+          for(std::size_t i = 0; i < stats.unreached_vertices.size() && i < 100; ++i)
+            un.push_back({stats.unreached_vertices[i][0], stats.unreached_vertices[i][1], stats.unreached_vertices[i][2]});
+          j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
+                           {"removed_buffer_cells", stats.removed_buffer_cells}, {"surface_vertices", stats.surface_vertices},
+                           {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
+                           {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
+                           {"curves_missed", stats.curves_missed}, {"optimisation_passes", stats.optimisation_passes},
+                           {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", un}};
+        }
         j["grid"] = {{"initial_cells", {stats.initial_cells[0], stats.initial_cells[1], stats.initial_cells[2]}},
                      {"leaf_cells", leaves}, {"cut_leaves", stats.cut_leaves}, {"balance_splits", stats.balance_splits},
                      {"components", stats.components}, {"trimmed_cells", stats.trimmed_cells},

@@ -6,10 +6,13 @@
 
 // The face-based (OpenFOAM polyMesh) view of a non-conformal hexahedral mesh. Each hexahedron
 // becomes a polyhedral cell: a hex face whose centre is a hanging node (finer cells beyond it) is
-// split into the four quarters facing them; any other face lists all the vertices lying on its
-// edges (hanging nodes on edges included). Faces are numbered as OpenFOAM requires: internal faces
-// first in upper-triangular order (sorted by owner, then neighbour, owner < neighbour, normal from
-// owner to neighbour), then boundary faces grouped by patch.
+// split into the four quarters facing them (1:4); a face with hanging midpoints on two opposite
+// edges whose two halves between those midpoints are each a face of another cell or a boundary face
+// (two cells side by side beyond it, as in a buffer layer over a boundary) is split into these
+// halves (1:2); any other face lists all the vertices lying on its edges (hanging nodes on edges
+// included), and so does each piece of a split face. Faces are numbered as OpenFOAM requires:
+// internal faces first in upper-triangular order (sorted by owner, then neighbour, owner <
+// neighbour, normal from owner to neighbour), then boundary faces grouped by patch.
 
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 
@@ -43,8 +46,8 @@ struct Polyhedral_mesh_3
 
   /*!
    * builds the faces of `mesh`.
-   * \throws std::logic_error if a face is found neither twice (internal) nor among the mesh's
-   *         boundary faces: the mesh is inconsistent.
+   * \throws std::logic_error if a face (or a quarter or half of a split face) is found neither
+   *         twice (internal) nor among the mesh's boundary faces: the mesh is inconsistent.
    */
   template <typename HexMesh>
   void build(const HexMesh& mesh)
@@ -77,12 +80,50 @@ struct Polyhedral_mesh_3
       m = it->second; return true;
     };
 
+    const auto& lf = hex_local_faces();
+    // boundary faces of the hex mesh, by key
+    std::vector<std::pair<Key, int>> bkeys;
+    bkeys.reserve(mesh.boundary_faces.size());
+    for(const auto& bf : mesh.boundary_faces) bkeys.push_back({sorted(bf.vertices), bf.patch});
+    std::sort(bkeys.begin(), bkeys.end());
+    // the whole faces of all cells, by key: a half of a coarse face is a 1:2 split only if some
+    // other cell (or the boundary) has it as a face. Midpoints on two opposite edges alone do not
+    // tell: octrees often have them on a coarse face whose neighbour is just as coarse. Without
+    // edge midpoints there is no such split, and no need for this index.
+    std::vector<std::pair<Key, Index>> cell_faces;
+    if(!edge_mid.empty()) {
+      cell_faces.reserve(6 * mesh.hexahedra.size());
+      for(Index c = 0; c < mesh.hexahedra.size(); ++c) {
+        const auto& h = mesh.hexahedra[c];
+        for(const auto& f : lf) cell_faces.push_back({sorted({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}}), c});
+      }
+      std::sort(cell_faces.begin(), cell_faces.end());
+    }
+    auto is_face_beyond = [&](const Key& k, Index c) {
+      auto it = std::lower_bound(cell_faces.begin(), cell_faces.end(), std::make_pair(k, Index(0)));
+      for(; it != cell_faces.end() && it->first == k; ++it)
+        if(it->second != c) return true;
+      auto b = std::lower_bound(bkeys.begin(), bkeys.end(), std::make_pair(k, -1));
+      return b != bkeys.end() && b->first == k;
+    };
+
     struct Item { Key key; Index cell; Index poly; };
     std::vector<Item> items;
     std::vector<std::vector<Index>> polys;
     items.reserve(6 * mesh.hexahedra.size());
     polys.reserve(6 * mesh.hexahedra.size());
-    const auto& lf = hex_local_faces();
+    // a quad of cell c with, after each corner, the hanging midpoint of the edge it starts (if any)
+    auto add_polygon = [&](const std::array<Index, 4>& q, Index c) {
+      std::vector<Index> p;
+      p.reserve(8);
+      for(int i = 0; i < 4; ++i) {
+        p.push_back(q[i]);
+        Index m;
+        if(mid_of(q[i], q[(i + 1) % 4], m)) p.push_back(m);
+      }
+      items.push_back({sorted(q), c, Index(polys.size())});
+      polys.push_back(std::move(p));
+    };
     for(Index c = 0; c < mesh.hexahedra.size(); ++c) {
       const auto& h = mesh.hexahedra[c];
       for(const auto& f : lf) {
@@ -99,27 +140,27 @@ struct Polyhedral_mesh_3
             items.push_back({sorted(s), c, Index(polys.size())});
             polys.emplace_back(s.begin(), s.end());
           }
-        } else {
-          std::vector<Index> p;
-          p.reserve(8);
-          for(int i = 0; i < 4; ++i) {
-            p.push_back(q[i]);
-            Index m;
-            if(mid_of(q[i], q[(i + 1) % 4], m)) p.push_back(m);
-          }
-          items.push_back({sorted({{q[0], q[1], q[2], q[3]}}), c, Index(polys.size())});
-          polys.push_back(std::move(p));
+          continue;
         }
+        // 1:2 split across the midpoints of edges (p0,p1) and (p2,p3), p the face rotated by r;
+        // both halves keep the face's orientation
+        bool split = false;
+        for(int r = 0; r < 2 && !split; ++r) {
+          const Index p[4] = {q[r], q[r + 1], q[r + 2], q[(r + 3) % 4]};
+          Index a, b;
+          if(!mid_of(p[0], p[1], a) || !mid_of(p[2], p[3], b)) continue;
+          const std::array<Index, 4> half0 = {{p[0], a, b, p[3]}}, half1 = {{a, p[1], p[2], b}};
+          if(is_face_beyond(sorted(half0), c) && is_face_beyond(sorted(half1), c)) {
+            add_polygon(half0, c);
+            add_polygon(half1, c);
+            split = true;
+          }
+        }
+        if(!split) add_polygon({{q[0], q[1], q[2], q[3]}}, c);
       }
     }
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
       return a.key != b.key ? a.key < b.key : a.cell < b.cell; });
-
-    // boundary faces of the hex mesh, by key
-    std::vector<std::pair<Key, int>> bkeys;
-    bkeys.reserve(mesh.boundary_faces.size());
-    for(const auto& bf : mesh.boundary_faces) bkeys.push_back({sorted(bf.vertices), bf.patch});
-    std::sort(bkeys.begin(), bkeys.end());
 
     struct Internal { Index own, nei, poly; };
     struct Boundary { int patch; Index own, poly; };

@@ -7,6 +7,7 @@
 #include <CGAL/Bbox_3.h>
 
 #include <array>
+#include <vector>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -108,6 +109,22 @@ struct Meshing_statistics
   std::size_t disconnected_cells = 0;  ///< seeded region: cells cut off from the seed by trimming
   std::size_t kept_cells = 0;          ///< cells of the mesh
   int max_level_reached = 0;           ///< the finest level of the grid
+  // body-fitted boundary (see `make_hex_mesh_3()`, named parameter `body_fitted`)
+  std::size_t staircase_removed_cells = 0;  ///< cells removed to make room for the buffer layer or a manifold staircase
+  std::size_t too_close_vertices = 0;       ///< staircase vertices found too close to the surface (all rounds)
+  std::size_t non_manifold_vertices = 0;    ///< staircase vertices found non-manifold (all rounds)
+  std::size_t buffer_cells = 0;             ///< hexahedra of the buffer layer
+  std::size_t surface_vertices = 0;         ///< buffer vertices placed on the surface
+  std::size_t curve_vertices = 0;           ///< of which on feature curves
+  std::size_t corner_vertices = 0;          ///< of which on corners
+  std::size_t cap_vertices = 0;             ///< buffer vertices over holes of the input (not projected)
+  std::size_t curves_captured = 0;          ///< feature curves followed by a chain of mesh edges
+  std::size_t curves_missed = 0;            ///< feature curves no chain was found for
+  std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
+  std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
+  double capture_seconds = 0;               ///< time of the boundary capture
+  /// surface vertices released into the volume to keep every cell valid (they miss the surface)
+  std::vector<std::array<double, 3>> unreached_vertices;
 };
 
 /*!

@@ -272,6 +272,21 @@ public:
   }
   /// squared distance from `p` to the surface
   FT squared_distance(const Point_3& p) const { return tree().squared_distance(p); }
+  /// the first point where the ray from `p` in direction `d` meets the surface, if any (the
+  /// intersection point is constructed in floating point; a ray along a triangle gives the
+  /// segment's first end)
+  bool first_ray_hit(const Point_3& p, const typename GeomTraits::Vector_3& d, Point_3& hit) const
+  {
+    const typename GeomTraits::Ray_3 ray(p, d);
+    const auto r = tree().first_intersection(ray);
+    if(!r) return false;
+    if(const Point_3* q = boost::get<Point_3>(&r->first)) { hit = *q; return true; }
+    if(const typename GeomTraits::Segment_3* s = boost::get<typename GeomTraits::Segment_3>(&r->first)) {
+      hit = CGAL::squared_distance(p, s->source()) < CGAL::squared_distance(p, s->target()) ? s->source() : s->target();
+      return true;
+    }
+    return false;
+  }
   /// @}
 
 private:

@@ -11,16 +11,25 @@
 // - input -> mesh: the distance from points sampled uniformly on the input (by area, from a fixed
 //   seed) to the mesh boundary (its quads split into two triangles each).
 // Their maxima estimate the two one-sided Hausdorff distances.
+// Fidelity to the feature curves, both ways (`feature_fidelity()`): points sampled along the
+// input's feature edges against the feature edges of the mesh boundary, and back; input corners
+// against the mesh's boundary vertices.
 
+#include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Random.h>
+#include <CGAL/Search_traits_3.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -199,6 +208,240 @@ template <typename Domain>
 Surface_topology surface_topology(const Domain& domain)
 {
   return internal::polygon_topology(domain.triangle_indices());
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief how well a mesh boundary follows the feature curves of the input (see `feature_fidelity()`).
+ *
+ * A distance over an empty set of samples is 0; a distance to an empty set is infinite
+ * (`std::numeric_limits<double>::infinity()`). So if both sides have no feature edge, both
+ * distances are 0; if only one side has some, the distance from that side is infinite (and the
+ * Hausdorff distance, the larger of the two, is infinite).
+ */
+struct Feature_fidelity
+{
+  std::size_t input_feature_edges = 0;   ///< input edges of kind `SHARP`, `OPEN` or `NON_MANIFOLD`
+  std::size_t mesh_feature_edges = 0;    ///< feature edges of the boundary polygons (hanging nodes split edges)
+  double input_to_mesh = 0;   ///< the largest distance of a point sampled on the input's feature edges to the mesh's
+  double mesh_to_input = 0;   ///< the largest distance of a point sampled on the mesh's feature edges to the input's
+  std::array<double, 3> worst_input_location = {{0, 0, 0}};   ///< the input sample farthest from the mesh's edges
+  std::array<double, 3> worst_mesh_location = {{0, 0, 0}};    ///< the mesh sample farthest from the input's edges
+  std::size_t corners = 0;          ///< input corners (`features.corners()`)
+  double max_corner_distance = 0;   ///< the largest distance of an input corner to its nearest boundary vertex
+  std::array<double, 3> worst_corner_location = {{0, 0, 0}};   ///< the input corner farthest from the boundary
+  double sample_spacing = 0;        ///< the spacing of the samples along the edges (as given, or automatic)
+};
+
+namespace internal {
+// the boundary faces of `mesh` as polygons: each quad with the hanging nodes lying inside its edges
+// (2-master hanging nodes whose masters are the edge's ends, recursively for chains), so that the
+// boundary is conforming where a coarse face meets finer ones, as in `Polyhedral_mesh_3`
+template <typename HexMesh>
+std::vector<std::vector<std::uint32_t>> fidelity_boundary_polygons(const HexMesh& mesh)
+{
+  auto pair_key = [](std::uint64_t a, std::uint64_t b) { return a < b ? (a << 32 | b) : (b << 32 | a); };
+  std::unordered_map<std::uint64_t, std::uint32_t> edge_mid;
+  for(const auto& h : mesh.hanging_nodes)
+    if(h.number_of_masters == 2) edge_mid[pair_key(h.masters[0], h.masters[1])] = std::uint32_t(h.vertex);
+  std::vector<std::vector<std::uint32_t>> polys;
+  polys.reserve(mesh.boundary_faces.size());
+  // appends the vertices strictly inside a -> b, in order
+  auto inside = [&](auto&& self, std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out, int depth) -> void {
+    if(depth > 64) return;
+    auto it = edge_mid.find(pair_key(a, b));
+    if(it == edge_mid.end()) return;
+    const std::uint32_t m = it->second;
+    self(self, a, m, out, depth + 1);
+    out.push_back(m);
+    self(self, m, b, out, depth + 1);
+  };
+  for(const auto& f : mesh.boundary_faces) {
+    std::vector<std::uint32_t> p;
+    p.reserve(8);
+    for(int i = 0; i < 4; ++i) {
+      p.push_back(std::uint32_t(f.vertices[std::size_t(i)]));
+      inside(inside, std::uint32_t(f.vertices[std::size_t(i)]), std::uint32_t(f.vertices[std::size_t((i + 1) % 4)]), p, 0);
+    }
+    polys.push_back(std::move(p));
+  }
+  return polys;
+}
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief measures how well the boundary of `mesh` captures the feature curves of the input, both
+ * ways, and how close its boundary vertices come to the input's corners.
+ *
+ * - Input feature edges: the edges of `features` whose kind includes `SHARP`, `OPEN` or
+ *   `NON_MANIFOLD` (not those that are only `PATCH_BORDER`s: the mesh side has no counterpart).
+ *   Which edges are sharp was decided when `features` was built (its own feature angle).
+ * - Mesh feature edges: the boundary faces are first made polygons by inserting the hanging nodes
+ *   that lie inside their edges (`Polyhedral_mesh_3`'s view), so that a coarse face's edge pairs
+ *   with its finer neighbours' halves. An edge of these polygons that belongs to at least one face
+ *   on a surface patch (patch >= 6) is a feature edge if it also belongs to a face on a box patch
+ *   (0..5), or to only one face (open), or to more than two faces (non-manifold), or to exactly two
+ *   faces whose normals make an angle of at least `feature_angle` degrees. A quad's normal is its
+ *   vector area (its diagonals' cross product), as faces may be slightly non-planar; a degenerate
+ *   normal makes no feature. Edges between faces of two different surface patches are not
+ *   features by themselves.
+ * - Distances: every edge of each set is sampled at `sample_spacing` (or finer: the edge is cut
+ *   into equal parts, its end points included), and the distance from each sample to the nearest
+ *   edge of the other set is found through an AABB tree of segments. The maxima are lower bounds of
+ *   the two one-sided Hausdorff distances between the edge sets, below them by at most half the
+ *   spacing. With `sample_spacing` <= 0 the spacing is 1/20 of the mean length of the input
+ *   feature edges or of the mesh feature edges, whichever is smaller.
+ * - Corners: each of `features.corners()` against the nearest vertex of a boundary face on a surface
+ *   patch (hanging nodes included); infinite if there is none.
+ *
+ * The result is deterministic: edges are visited in a fixed order and ties keep the first sample.
+ * See `Feature_fidelity` for empty sets.
+ *
+ * \tparam HexMesh a `Hex_mesh_3`
+ * \tparam Domain a `Surface_domain_3` (its kernel is used)
+ * \tparam FeatureCurves a `Feature_curves_3` built from `domain`
+ */
+template <typename HexMesh, typename Domain, typename FeatureCurves>
+Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, const FeatureCurves& features,
+                                  double feature_angle = 30, double sample_spacing = 0)
+{
+  (void)domain;
+  typedef typename Domain::Geom_traits GT;
+  typedef typename GT::FT FT;
+  typedef typename GT::Point_3 Point_3;
+  typedef typename GT::Segment_3 Segment_3;
+  typedef std::array<double, 3> V;
+  const double inf = std::numeric_limits<double>::infinity();
+  auto vec = [](const Point_3& p) -> V { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
+  Feature_fidelity r;
+
+  // input feature edges
+  std::vector<Segment_3> input;
+  const unsigned wanted = unsigned(FeatureCurves::SHARP) | unsigned(FeatureCurves::OPEN) | unsigned(FeatureCurves::NON_MANIFOLD);
+  for(const auto& e : features.edges())
+    if(unsigned(e.kind) & wanted) input.emplace_back(features.point(e.vertices[0]), features.point(e.vertices[1]));
+  r.input_feature_edges = input.size();
+
+  // mesh feature edges, from the boundary polygons
+  const std::vector<std::vector<std::uint32_t>> polys = internal::fidelity_boundary_polygons(mesh);
+  std::vector<V> normal(polys.size());
+  for(std::size_t f = 0; f < polys.size(); ++f) {
+    const auto& q = mesh.boundary_faces[f].vertices;
+    const V a = vec(mesh.points[q[0]]), b = vec(mesh.points[q[1]]), c = vec(mesh.points[q[2]]), d = vec(mesh.points[q[3]]);
+    const V u = {{c[0] - a[0], c[1] - a[1], c[2] - a[2]}}, w = {{d[0] - b[0], d[1] - b[1], d[2] - b[2]}};
+    normal[f] = {{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
+  }
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> half;   // (edge key, face)
+  for(std::size_t f = 0; f < polys.size(); ++f) {
+    const std::size_t n = polys[f].size();
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t a = polys[f][i], b = polys[f][(i + 1) % n];
+      half.push_back({a < b ? (a << 32 | b) : (b << 32 | a), std::uint32_t(f)});
+    }
+  }
+  std::sort(half.begin(), half.end());
+  const double cos_max = std::cos(feature_angle * CGAL_PI / 180.0);
+  std::vector<Segment_3> meshed;
+  for(std::size_t i = 0; i < half.size();) {
+    std::size_t j = i;
+    std::size_t on_surface = 0, on_box = 0;
+    std::uint32_t s[2] = {0, 0};
+    for(; j < half.size() && half[j].first == half[i].first; ++j) {
+      if(mesh.boundary_faces[half[j].second].patch >= 6) {
+        if(on_surface < 2) s[on_surface] = half[j].second;
+        ++on_surface;
+      } else
+        ++on_box;
+    }
+    bool feature = false;
+    if(on_surface > 0) {
+      if(on_box > 0 || on_surface != 2) feature = true;
+      else {
+        const V& n0 = normal[s[0]];
+        const V& n1 = normal[s[1]];
+        const double l = std::sqrt((n0[0] * n0[0] + n0[1] * n0[1] + n0[2] * n0[2]) * (n1[0] * n1[0] + n1[1] * n1[1] + n1[2] * n1[2]));
+        if(l > 0) feature = (n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]) / l <= cos_max;
+      }
+    }
+    if(feature) {
+      const std::uint32_t a = std::uint32_t(half[i].first >> 32), b = std::uint32_t(half[i].first & 0xffffffffu);
+      meshed.emplace_back(mesh.points[a], mesh.points[b]);
+    }
+    i = j;
+  }
+  r.mesh_feature_edges = meshed.size();
+
+  // sample spacing
+  auto mean_length = [](const std::vector<Segment_3>& segs) {
+    double sum = 0;
+    for(const Segment_3& g : segs) sum += std::sqrt(CGAL::to_double(g.squared_length()));
+    return segs.empty() ? 0.0 : sum / double(segs.size());
+  };
+  if(sample_spacing > 0) r.sample_spacing = sample_spacing;
+  else {
+    double m = inf;
+    if(!input.empty()) m = (std::min)(m, mean_length(input));
+    if(!meshed.empty()) m = (std::min)(m, mean_length(meshed));
+    r.sample_spacing = m < inf ? m / 20 : 0;
+  }
+
+  // the largest distance from the samples of `from` to the segments of `to`
+  typedef typename std::vector<Segment_3>::const_iterator It;
+  typedef CGAL::AABB_segment_primitive<GT, It> Primitive;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, Primitive>> Tree;
+  auto one_way = [&](const std::vector<Segment_3>& from, const std::vector<Segment_3>& to, double& worst,
+                     std::array<double, 3>& where) {
+    worst = 0;
+    if(from.empty()) return;
+    if(to.empty()) { worst = inf; where = vec(from.front().source()); return; }
+    Tree tree(to.begin(), to.end());
+    tree.accelerate_distance_queries();
+    for(const Segment_3& g : from) {
+      const double len = std::sqrt(CGAL::to_double(g.squared_length()));
+      std::size_t parts = 1;
+      if(r.sample_spacing > 0 && len > r.sample_spacing)
+        parts = std::size_t((std::min)(std::ceil(len / r.sample_spacing), double(1 << 20)));
+      for(std::size_t k = 0; k <= parts; ++k) {
+        const Point_3 p = k == 0 ? g.source()
+                        : k == parts ? g.target()
+                        : g.source() + (g.target() - g.source()) * FT(double(k) / double(parts));
+        const double dist = std::sqrt(CGAL::to_double(tree.squared_distance(p)));
+        if(dist > worst) { worst = dist; where = vec(p); }
+      }
+    }
+  };
+  one_way(input, meshed, r.input_to_mesh, r.worst_input_location);
+  one_way(meshed, input, r.mesh_to_input, r.worst_mesh_location);
+
+  // corners -> nearest boundary vertex on a surface patch
+  const auto& corners = features.corners();
+  r.corners = corners.size();
+  if(corners.empty()) return r;
+  std::vector<Point_3> bv;
+  {
+    std::vector<std::uint32_t> ids;
+    for(std::size_t f = 0; f < polys.size(); ++f)
+      if(mesh.boundary_faces[f].patch >= 6) ids.insert(ids.end(), polys[f].begin(), polys[f].end());
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    for(std::uint32_t v : ids) bv.push_back(mesh.points[v]);
+  }
+  if(bv.empty()) {
+    r.max_corner_distance = inf;
+    r.worst_corner_location = vec(features.point(corners.front()));
+    return r;
+  }
+  typedef CGAL::Search_traits_3<GT> Search_traits;
+  typedef CGAL::Orthogonal_k_neighbor_search<Search_traits> Search;
+  typename Search::Tree kd(bv.begin(), bv.end());
+  for(const auto c : corners) {
+    const Point_3& p = features.point(c);
+    Search search(kd, p, 1);
+    const double dist = std::sqrt(CGAL::to_double(CGAL::squared_distance(p, search.begin()->first)));
+    if(dist > r.max_corner_distance) { r.max_corner_distance = dist; r.worst_corner_location = vec(p); }
+  }
+  return r;
 }
 
 } // namespace Hex_meshing_3

@@ -22,6 +22,8 @@ enum region_seed_t { region_seed };
 enum meshing_box_t { meshing_box };
 enum leaks_t { leaks };
 enum statistics_t { statistics };
+enum body_fitted_t { body_fitted };
+enum feature_curves_t { feature_curves };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -49,6 +51,14 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::statistics_t, Named_parameters>
   statistics(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::body_fitted_t, Named_parameters>
+  body_fitted(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::feature_curves_t, Named_parameters>
+  feature_curves(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -75,6 +85,15 @@ Named_parameters<V, internal_np::leaks_t> leaks(const V& v) { return { v }; }
 /// a pointer to a `Meshing_statistics` that receives the counts of the run
 template <typename V>
 Named_parameters<V, internal_np::statistics_t> statistics(const V& v) { return { v }; }
+
+/// `false`: keep the staircase of grid faces as the boundary (no buffer layer, no projection)
+template <typename V>
+Named_parameters<V, internal_np::body_fitted_t> body_fitted(const V& v) { return { v }; }
+
+/// the feature curves the boundary must follow (a pointer to a `Feature_curves_3`), instead of the
+/// ones `Feature_curves_3` finds with its default options (30 degrees)
+template <typename V>
+Named_parameters<V, internal_np::feature_curves_t> feature_curves(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }

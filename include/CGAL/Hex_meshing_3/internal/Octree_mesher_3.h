@@ -23,6 +23,7 @@
 #include <CGAL/Hex_mesh_criteria_3.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Status.h>
+#include <CGAL/Hex_meshing_3/internal/Boundary_capture_3.h>
 
 #include <algorithm>
 #include <array>
@@ -126,10 +127,12 @@ public:
   const std::vector<Region_leak>& leaks() const { return m_leaks; }
 
   template <typename Visitor, typename HexMesh>
-  Status run(HexMesh& out, std::size_t max_cells, const std::optional<Point_3>& seed, Visitor& visitor)
+  Status run(HexMesh& out, std::size_t max_cells, const std::optional<Point_3>& seed, Visitor& visitor,
+             double buffer_gap = 0)
   {
     out.clear();
     Status status = Status::SUCCESS;
+    m_near_layers = buffer_gap > 0 ? 1 : 0;
     init_box();                                     // throws Input_error on an unusable box/size
     if(seed) locate_seed(*seed);                    // throws before any work on a bad seed
     visitor.on_phase_begin("refine", std::size_t(m_n[0]) * m_n[1] * m_n[2]);
@@ -142,6 +145,11 @@ public:
     visitor.on_phase_begin("classify", leaf_count());
     classify(seed);
     visitor.on_phase_end("classify");
+    if(buffer_gap > 0) {
+      visitor.on_phase_begin("prepare", m_stats.kept_cells);
+      prepare_staircase(seed, buffer_gap);
+      visitor.on_phase_end("prepare");
+    }
     visitor.on_phase_begin("extract", m_stats.kept_cells);
     extract(out);
     visitor.on_phase_end("extract");
@@ -364,6 +372,7 @@ public:
         if((i & 0xFFFF) == 0xFFFF && !visitor.go_further(double(l) / max_level)) return Status::CANCELED;
       }
       if(bad.empty()) break;
+      if(m_near_layers > 0) add_near_cells(l, bad);
       if(m_leaves + 7 * bad.size() > max_cells) return Status::CELL_LIMIT_REACHED;
       for(std::size_t i = 0; i < bad.size(); ++i) {
         split(bad[i]);
@@ -373,6 +382,30 @@ public:
       if(!visitor.go_further(double(l + 1) / max_level)) return Status::CANCELED;
     }
     return Status::SUCCESS;
+  }
+
+  // Surface layers: when a cut cell of level l is split, the leaves of level l within
+  // `m_near_layers` cells of it are split too, so that the cells next to the surface (where the
+  // buffer layer starts) have the size asked for the surface, not the balance's coarser sizes.
+  void add_near_cells(int l, std::vector<std::uint32_t>& bad)
+  {
+    std::vector<char> mark(m_nodes.size(), 0);
+    for(std::uint32_t id : bad) mark[id] = 1;
+    const std::size_t n = bad.size();
+    const int r = m_near_layers;
+    for(std::size_t i = 0; i < n; ++i) {
+      const Node nd = m_nodes[bad[i]];
+      if(!(nd.flags & CUT)) continue;
+      for(int dz = -r; dz <= r; ++dz)
+        for(int dy = -r; dy <= r; ++dy)
+          for(int dx = -r; dx <= r; ++dx) {
+            const std::uint32_t j = find(l, std::int64_t(nd.x) + dx, std::int64_t(nd.y) + dy, std::int64_t(nd.z) + dz);
+            if(j == NONE || mark[j] || !m_nodes[j].is_leaf() || m_nodes[j].level != l) continue;
+            mark[j] = 1;
+            bad.push_back(j);
+          }
+    }
+    std::sort(bad.begin(), bad.end());
   }
 
   // 2:1 balance across every face and edge: processing levels from the finest down, a leaf at
@@ -513,6 +546,33 @@ public:
     trim();
     if(seed) keep_seed_component(leaf_containing(*seed));
     for(const Node& nd : m_nodes) if(nd.is_leaf() && (nd.flags & KEPT)) ++m_stats.kept_cells;
+  }
+
+  // Room for a buffer layer: the cells of `staircase_cells_to_remove()` (too close to the surface,
+  // or at a non-manifold vertex of the staircase) are removed, then trimming again, until none is
+  // left. Each round extracts the staircase (cheap next to the rest).
+  void prepare_staircase(const std::optional<Point_3>& seed, double gap)
+  {
+    const std::uint32_t seed_cell = seed ? leaf_containing(*seed) : NONE;
+    for(int round = 0; round < 64; ++round) {
+      Hex_mesh_3<GT> tmp;
+      extract(tmp);
+      std::size_t close = 0, nm = 0;
+      const std::vector<std::uint32_t> bad = staircase_cells_to_remove(tmp, m_domain, gap, &close, &nm);
+      m_stats.too_close_vertices += close;
+      m_stats.non_manifold_vertices += nm;
+      if(bad.empty()) break;
+      std::vector<std::uint32_t> kept;   // mesh cell i = the i-th kept leaf in node order
+      for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
+        if(m_nodes[id].is_leaf() && (m_nodes[id].flags & KEPT)) kept.push_back(id);
+      for(std::uint32_t c : bad) m_nodes[kept[c]].flags &= std::uint8_t(~KEPT);
+      m_stats.staircase_removed_cells += bad.size();
+      trim();
+      if(seed) keep_seed_component(seed_cell);
+      m_stats.kept_cells = 0;
+      for(const Node& nd : m_nodes) if(nd.is_leaf() && (nd.flags & KEPT)) ++m_stats.kept_cells;
+      if(m_stats.kept_cells == 0) break;
+    }
   }
 
   // A seeded region is one connected region: trimming can cut pockets off it (behind a passage
@@ -830,6 +890,7 @@ private:
   std::vector<int> m_component;
   std::vector<Region_leak> m_leaks;
   bool m_use_features = false, m_use_lines = false;
+  int m_near_layers = 0;
   std::size_t m_leaves = 0;
   Statistics m_stats;
 };

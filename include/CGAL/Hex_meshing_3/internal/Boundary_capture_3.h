@@ -1,0 +1,1120 @@
+// Copyright (c) 2026  Hex_meshing_3 project authors.
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Author(s)     : Hex_meshing_3 developers
+#ifndef CGAL_HEX_MESHING_3_INTERNAL_BOUNDARY_CAPTURE_3_H
+#define CGAL_HEX_MESHING_3_INTERNAL_BOUNDARY_CAPTURE_3_H
+
+// Body-fitted boundary, HEXPRESS-style (ALGORITHMS.md §9.1): the staircase of grid faces left by
+// the overlay grid is joined to the input surface by a buffer layer of hexahedra.
+//
+// 1. The staircase is prepared on the grid (see `staircase_cells_to_remove()`): cells with a
+//    corner on the surface side closer than `gap` x their size are removed (a buffer hex must have
+//    room), and so are the cells at a non-manifold vertex or edge of the staircase (a buffer
+//    vertex needs one outward side); both repeat with trimming until nothing changes.
+// 2. Every vertex of a surface face of the staircase gets a twin, placed at its closest point on
+//    the surface (on a box plane, kept in it); each surface face (a,b,c,d) becomes the bottom of a
+//    buffer hex (a,b,c,d,a',b',c',d'), whose top is the new boundary face. The twin of a hanging
+//    edge midpoint of a surface face's edge (a,b) hangs on (a',b'), so a coarse buffer hex meets
+//    two fine ones 1:2 across its side face (Polyhedral_mesh_3 splits such faces).
+// 3. Feature curves are captured by chains of top-face edges (shortest paths on the buffer's outer
+//    surface between the vertices nearest to the curve's ends, biased towards the curve), whose
+//    vertices are snapped onto the curve; corners are snapped onto the corners. The top faces
+//    between chains form surface regions, each projected only onto the input faces between the
+//    same curves, so a vertex near a sharp edge does not jump to the other side.
+// 4. Optimisation: every free vertex (interior, inner buffer vertex, box-plane vertex in its
+//    plane, surface vertex on its region, curve vertex on its curve; corners stay) is moved to
+//    the best of a few candidates (Laplacian target, steps along the numerical gradient of the
+//    minimum scaled Jacobian of the cells it affects, hanging nodes following their masters) if
+//    that raises the minimum scaled Jacobian of those cells: validity first (untangling), then
+//    quality. Surface vertices never leave the surface unless a cell stays inverted; then the
+//    vertex is released into the volume and reported ("unreached").
+
+#include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+#include <CGAL/Hex_meshing_3/quality.h>
+
+#include <CGAL/AABB_segment_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <memory>
+#include <queue>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace CGAL {
+namespace Hex_meshing_3 {
+namespace internal {
+
+inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
+{
+  return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+}
+
+// Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
+inline double hex_scaled_jacobian(const Vec3* x)
+{
+  static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
+  double sj = std::numeric_limits<double>::max();
+  auto det = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(c, c));
+    if(!(l > 0)) return 0.0;
+    return dot(a, cross(b, c)) / l;
+  };
+  for(int i = 0; i < 8; ++i)
+    sj = (std::min)(sj, det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i])));
+  const Vec3 X1 = add(add(sub(x[1], x[0]), sub(x[2], x[3])), add(sub(x[5], x[4]), sub(x[6], x[7])));
+  const Vec3 X2 = add(add(sub(x[3], x[0]), sub(x[2], x[1])), add(sub(x[7], x[4]), sub(x[6], x[5])));
+  const Vec3 X3 = add(add(sub(x[4], x[0]), sub(x[5], x[1])), add(sub(x[6], x[2]), sub(x[7], x[3])));
+  sj = (std::min)(sj, det(X1, X2, X3));
+  return (std::max)(-1.0, (std::min)(1.0, sj));
+}
+
+// The face pyramids OpenFOAM checks: each face split into 4 triangles around its vertex average,
+// each triangle with the cell's vertex average forms a tetrahedron that must have a positive
+// volume. Returns the smallest of their scaled volumes (6V / product of the 3 edge lengths at the
+// face centre) relative to a cube's, so 1 for a cube and <= 0 when a pyramid is inverted.
+inline double hex_pyramid_quality(const Vec3* x)
+{
+  Vec3 cc{{0, 0, 0}};
+  for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
+  cc = mul(cc, 0.125);
+  double q = std::numeric_limits<double>::max();
+  for(const auto& f : hex_local_faces()) {
+    const Vec3 fc = mul(add(add(x[f[0]], x[f[1]]), add(x[f[2]], x[f[3]])), 0.25);
+    const Vec3 u = sub(cc, fc);
+    for(int i = 0; i < 4; ++i) {
+      const Vec3 a = sub(x[f[i]], fc), b = sub(x[f[(i + 1) % 4]], fc);
+      const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(u, u));
+      const double v = l > 0 ? -dot(cross(a, b), u) / l : 0.0;
+      q = (std::min)(q, v);
+    }
+  }
+  // a cube: a, b = half diagonals of a face (orthogonal, length sqrt(2)/2), u = half an edge,
+  // normal to the face: |a x b| |u| / (|a| |b| |u|) = 1
+  return q;
+}
+
+// The boundary faces of a hexahedral mesh as polygons: each quad with the hanging midpoints of its
+// edges inserted, so that a coarse face and the two fine faces along its edge share edges.
+template <typename HexMesh>
+std::vector<std::vector<std::uint32_t>> staircase_polygons(const HexMesh& m)
+{
+  std::unordered_map<std::uint64_t, std::uint32_t> mid;
+  for(const auto& h : m.hanging_nodes)
+    if(h.number_of_masters == 2) mid[capture_edge_key(h.masters[0], h.masters[1])] = h.vertex;
+  std::vector<std::vector<std::uint32_t>> polys;
+  polys.reserve(m.boundary_faces.size());
+  for(const auto& f : m.boundary_faces) {
+    std::vector<std::uint32_t> p;
+    for(int i = 0; i < 4; ++i) {
+      p.push_back(f.vertices[i]);
+      auto it = mid.find(capture_edge_key(f.vertices[i], f.vertices[(i + 1) % 4]));
+      if(it != mid.end()) p.push_back(it->second);
+    }
+    polys.push_back(std::move(p));
+  }
+  return polys;
+}
+
+// The cells of a staircase mesh that must go before a buffer layer can be inserted: cells with a
+// corner on a surface face (patch >= 6) closer to the surface than `gap` x the smallest edge of the
+// cells at that corner, and cells at a vertex where the boundary is not a single disk (two cells
+// touching along an edge or at a corner only, seen from the region or from outside).
+template <typename HexMesh, typename Domain>
+std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Domain& domain, double gap,
+                                                     std::size_t* too_close = nullptr,
+                                                     std::size_t* non_manifold = nullptr)
+{
+  typedef std::uint32_t Index;
+  const std::size_t nv = m.points.size();
+  // vertex -> cells (corners)
+  std::vector<Index> start(nv + 1, 0), cells;
+  for(const auto& h : m.hexahedra) for(Index v : h) ++start[v + 1];
+  for(std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  cells.resize(start[nv]);
+  {
+    std::vector<Index> pos(start.begin(), start.end() - 1);
+    for(Index c = 0; c < m.hexahedra.size(); ++c) for(Index v : m.hexahedra[c]) cells[pos[v]++] = c;
+  }
+  auto cell_size = [&](Index c) {
+    const auto& h = m.hexahedra[c];
+    return CGAL::to_double(m.points[h[1]].x() - m.points[h[0]].x());
+  };
+  const auto polys = staircase_polygons(m);
+  std::vector<char> bad_vertex(nv, 0);
+  std::size_t n_close = 0, n_nm = 0;
+  // too close
+  std::vector<char> surf(nv, 0);
+  for(std::size_t f = 0; f < m.boundary_faces.size(); ++f)
+    if(m.boundary_faces[f].patch >= 6) for(Index v : polys[f]) surf[v] = 1;
+  for(Index v = 0; v < nv; ++v) {
+    if(!surf[v] || start[v] == start[v + 1]) continue;
+    double h = std::numeric_limits<double>::max();
+    for(Index k = start[v]; k < start[v + 1]; ++k) h = (std::min)(h, cell_size(cells[k]));
+    const double d2 = CGAL::to_double(domain.squared_distance(m.points[v]));
+    if(d2 < gap * gap * h * h) { bad_vertex[v] = 1; ++n_close; }
+  }
+  // manifoldness: around each vertex, the polygons must form one cycle (each in-edge w->v matched by
+  // exactly one polygon with out-edge v->w)
+  std::vector<Index> pstart(nv + 1, 0), pinc;
+  for(const auto& p : polys) for(Index v : p) ++pstart[v + 1];
+  for(std::size_t v = 0; v < nv; ++v) pstart[v + 1] += pstart[v];
+  pinc.resize(pstart[nv]);
+  {
+    std::vector<Index> pos(pstart.begin(), pstart.end() - 1);
+    for(Index f = 0; f < polys.size(); ++f) for(Index v : polys[f]) pinc[pos[v]++] = f;
+  }
+  auto next_prev = [&](Index f, Index v, Index& nx, Index& pv) {
+    const auto& p = polys[f];
+    for(std::size_t i = 0; i < p.size(); ++i)
+      if(p[i] == v) { nx = p[(i + 1) % p.size()]; pv = p[(i + p.size() - 1) % p.size()]; return; }
+  };
+  std::vector<Index> nxt, prv;
+  std::vector<char> seen;
+  for(Index v = 0; v < nv; ++v) {
+    const Index n = pstart[v + 1] - pstart[v];
+    if(n == 0) continue;
+    nxt.resize(n); prv.resize(n);
+    for(Index k = 0; k < n; ++k) next_prev(pinc[pstart[v] + k], v, nxt[k], prv[k]);
+    bool ok = true;
+    seen.assign(n, 0);
+    Index cur = 0, visited = 0;
+    for(;;) {
+      seen[cur] = 1; ++visited;
+      // the polygon whose in-edge (w -> v) has w = our out-neighbour
+      Index found = n, count = 0;
+      for(Index k = 0; k < n; ++k) if(prv[k] == nxt[cur]) { found = k; ++count; }
+      if(count != 1) { ok = false; break; }
+      if(seen[found]) { ok = (found == 0); break; }
+      cur = found;
+    }
+    if(ok && visited != n) ok = false;
+    if(!ok) { bad_vertex[v] = 1; ++n_nm; }
+  }
+  std::vector<char> bad_cell(m.hexahedra.size(), 0);
+  for(Index v = 0; v < nv; ++v) {
+    if(!bad_vertex[v]) continue;
+    for(Index k = start[v]; k < start[v + 1]; ++k) bad_cell[cells[k]] = 1;
+    for(Index k = pstart[v]; k < pstart[v + 1]; ++k) bad_cell[m.boundary_faces[pinc[k]].cell] = 1;
+  }
+  std::vector<Index> out;
+  for(Index c = 0; c < bad_cell.size(); ++c) if(bad_cell[c]) out.push_back(c);
+  if(too_close) *too_close = n_close;
+  if(non_manifold) *non_manifold = n_nm;
+  return out;
+}
+
+/// what the boundary capture did
+struct Boundary_capture_report
+{
+  std::size_t buffer_cells = 0;          ///< hexahedra of the buffer layer
+  std::size_t surface_vertices = 0;      ///< twins placed on the surface
+  std::size_t curve_vertices = 0;        ///< of which snapped onto feature curves
+  std::size_t corner_vertices = 0;       ///< of which snapped onto corners
+  std::size_t cap_vertices = 0;          ///< twins over holes (closest point on an open edge), not projected
+  std::size_t curves_captured = 0, curves_missed = 0, curves_skipped = 0;
+  std::vector<std::array<double, 3>> unreached;   ///< surface vertices released to keep cells valid
+  std::size_t optimisation_passes = 0;
+  std::size_t removed_buffer_cells = 0;   ///< buffer cells that could not be made valid (removed)
+  double min_scaled_jacobian = 0;
+};
+
+template <typename HexMesh, typename Domain, typename FeatureCurves>
+class Boundary_capture_3
+{
+public:
+  typedef std::uint32_t Index;
+  static constexpr Index NONE = ~Index(0);
+  typedef typename Domain::Geom_traits GT;
+  typedef typename GT::Point_3 Point_3;
+  typedef typename GT::Segment_3 Segment_3;
+  typedef typename GT::Triangle_3 Triangle_3;
+
+  enum Kind : std::uint8_t { INTERIOR, SURFACE, CURVE, CORNER, CAP, HANGING, RELEASED };
+
+  struct Options
+  {
+    double target_quality = 0.6;   ///< cells below this minimum scaled Jacobian are optimised
+    int passes = 30;               ///< optimisation sweeps at most
+    double snap_weight = 4;        ///< bias of the feature paths towards their curve
+    double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
+    double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
+  };
+
+  Boundary_capture_3(HexMesh& mesh, const Domain& domain, const FeatureCurves* features, const Options& o = Options())
+    : m(mesh), d(domain), fc(features), opt(o)
+  {}
+
+  const Boundary_capture_report& report() const { return rep; }
+
+  template <typename Visitor>
+  bool run(Visitor& visitor)
+  {
+    for(int a = 0; a < 3; ++a) { box_lo[a] = m.box.min(a); box_hi[a] = m.box.max(a); }
+    P.resize(m.points.size());
+    for(std::size_t v = 0; v < P.size(); ++v) P[v] = vec(m.points[v]);
+    insert_buffer();
+    build_topology();
+    place_twins();
+    if(fc) snap_features();
+    build_regions();
+    for(Index v = 0; v < P.size(); ++v)   // after snapping: back onto the surface regions
+      if(kind[v] == SURFACE) P[v] = constrain(v, P[v]);
+    update_hanging();
+    if(!optimise(visitor)) return false;
+    assign_patches();
+    remove_invalid_buffer_cells();
+    m.points.resize(P.size());
+    for(std::size_t v = 0; v < P.size(); ++v) m.points[v] = Point_3(P[v][0], P[v][1], P[v][2]);
+    if(rep.removed_buffer_cells > 0) drop_unused_vertices();
+    return true;
+  }
+
+private:
+  // -----------------------------------------------------------------------------------------------
+  // 2. the buffer layer
+  int plane_mask(const Vec3& p) const
+  {
+    int mask = 0;
+    for(int a = 0; a < 3; ++a) {
+      if(p[a] == box_lo[a]) mask |= 1 << (2 * a);
+      if(p[a] == box_hi[a]) mask |= 1 << (2 * a + 1);
+    }
+    return mask;
+  }
+
+  void insert_buffer()
+  {
+    const std::size_t nv0 = P.size();
+    twin.assign(nv0, NONE);
+    std::vector<char> surf(nv0, 0);
+    std::unordered_set<std::uint64_t> surface_edges;
+    for(const auto& f : m.boundary_faces)
+      if(f.patch >= 6)
+        for(int i = 0; i < 4; ++i) { surf[f.vertices[i]] = 1; surface_edges.insert(capture_edge_key(f.vertices[i], f.vertices[(i + 1) % 4])); }
+    // midpoints hanging on an edge of a surface face are surface vertices too (they are corners of
+    // the finer faces next to it)
+    inner.clear();
+    for(Index v = 0; v < nv0; ++v)
+      if(surf[v]) { twin[v] = Index(P.size()); inner.push_back(v); P.push_back(P[v]); }
+    inner_of.assign(P.size(), NONE);
+    for(Index v = 0; v < nv0; ++v) if(twin[v] != NONE) inner_of[twin[v]] = v;
+    const std::size_t nh = m.hanging_nodes.size();
+    for(std::size_t i = 0; i < nh; ++i) {
+      const auto h = m.hanging_nodes[i];
+      if(h.number_of_masters != 2 || twin[h.vertex] == NONE) continue;
+      const Index a = h.masters[0], b = h.masters[1];
+      if(twin[a] == NONE || twin[b] == NONE || !surface_edges.count(capture_edge_key(a, b))) continue;
+      m.hanging_nodes.push_back({twin[h.vertex], {{twin[a], twin[b], 0, 0}}, 2});
+    }
+    std::vector<typename HexMesh::Boundary_face> faces;
+    faces.reserve(m.boundary_faces.size() * 2);
+    for(const auto& f : m.boundary_faces) {
+      if(f.patch < 6) { faces.push_back(f); continue; }
+      const Index c = Index(m.hexahedra.size());
+      typename HexMesh::Hexahedron hx;
+      for(int i = 0; i < 4; ++i) { hx[i] = f.vertices[i]; hx[i + 4] = twin[f.vertices[i]]; }
+      m.hexahedra.push_back(hx);
+      m.cell_levels.push_back(m.cell_levels[f.cell]);
+      buffer_owner.push_back(f.cell);
+      faces.push_back({{{hx[4], hx[5], hx[6], hx[7]}}, c, f.patch});
+      top_faces.push_back(faces.size() - 1);
+      // a side face on a box plane (the quad's edge lies in a plane the quad is not in)
+      for(int i = 0; i < 4; ++i) {
+        const Index a = f.vertices[i], b = f.vertices[(i + 1) % 4];
+        int common = plane_mask(P[a]) & plane_mask(P[b]);
+        for(int k = 0; k < 4; ++k) common &= plane_mask(P[f.vertices[k]]) ^ 0x3f;
+        if(!common) continue;
+        int bit = 0;
+        while(!(common & (1 << bit))) ++bit;
+        faces.push_back({{{a, b, twin[b], twin[a]}}, c, bit});
+      }
+      ++rep.buffer_cells;
+    }
+    m.boundary_faces.swap(faces);
+  }
+
+  // -----------------------------------------------------------------------------------------------
+  void build_topology()
+  {
+    const std::size_t nv = P.size();
+    kind.assign(nv, INTERIOR);
+    planes.assign(nv, 0);
+    for(Index v = 0; v < nv; ++v) planes[v] = std::uint8_t(plane_mask(P[v]));
+    for(Index v : inner) kind[twin[v]] = SURFACE;
+    // hanging nodes: independent masters with weights
+    hang_of.assign(nv, NONE);
+    for(std::size_t i = 0; i < m.hanging_nodes.size(); ++i) {
+      hang_of[m.hanging_nodes[i].vertex] = Index(i);
+      kind[m.hanging_nodes[i].vertex] = HANGING;
+    }
+    hang_masters.assign(m.hanging_nodes.size(), {});
+    for(std::size_t i = 0; i < m.hanging_nodes.size(); ++i) {
+      std::vector<std::pair<Index, double>> w;
+      add_masters(m.hanging_nodes[i].vertex, 1.0, w, 0);
+      std::sort(w.begin(), w.end());
+      std::vector<std::pair<Index, double>> merged;
+      for(const auto& x : w) {
+        if(!merged.empty() && merged.back().first == x.first) merged.back().second += x.second;
+        else merged.push_back(x);
+      }
+      hang_masters[i] = std::move(merged);
+    }
+    // vertex -> cells
+    cstart.assign(nv + 1, 0);
+    for(const auto& h : m.hexahedra) for(Index v : h) ++cstart[v + 1];
+    for(std::size_t v = 0; v < nv; ++v) cstart[v + 1] += cstart[v];
+    cinc.resize(cstart[nv]);
+    {
+      std::vector<Index> pos(cstart.begin(), cstart.end() - 1);
+      for(Index c = 0; c < m.hexahedra.size(); ++c) for(Index v : m.hexahedra[c]) cinc[pos[v]++] = c;
+    }
+    // independent vertex -> dependent hanging nodes
+    deps.assign(nv, {});
+    for(std::size_t i = 0; i < hang_masters.size(); ++i)
+      for(const auto& x : hang_masters[i]) deps[x.first].push_back(m.hanging_nodes[i].vertex);
+    // neighbours: hex edges for volume vertices, top-face edges for surface vertices
+    nbrs.assign(nv, {});
+    for(const auto& h : m.hexahedra)
+      for(const auto& e : hex_local_edges()) {
+        nbrs[h[e[0]]].push_back(h[e[1]]);
+        nbrs[h[e[1]]].push_back(h[e[0]]);
+      }
+    snbrs.assign(nv, {});
+    for(std::size_t f : top_faces) {
+      const auto& q = m.boundary_faces[f].vertices;
+      for(int i = 0; i < 4; ++i) { snbrs[q[i]].push_back(q[(i + 1) % 4]); snbrs[q[(i + 1) % 4]].push_back(q[i]); }
+    }
+    for(auto* L : {&nbrs, &snbrs})
+      for(auto& l : *L) { std::sort(l.begin(), l.end()); l.erase(std::unique(l.begin(), l.end()), l.end()); }
+    // local size: the shortest incident edge of the staircase
+    hloc.assign(nv, std::numeric_limits<double>::max());
+    for(const auto& h : m.hexahedra)
+      for(const auto& e : hex_local_edges()) {
+        const double l = norm(sub(P[h[e[0]]], P[h[e[1]]]));
+        if(l > 0) for(int k = 0; k < 2; ++k) hloc[h[e[k]]] = (std::min)(hloc[h[e[k]]], l);
+      }
+    for(Index v : inner) hloc[twin[v]] = hloc[v];
+  }
+
+  void add_masters(Index v, double w, std::vector<std::pair<Index, double>>& out, int depth) const
+  {
+    const Index h = hang_of[v];
+    if(h == NONE || depth > 64) { out.push_back({v, w}); return; }
+    const auto& n = m.hanging_nodes[h];
+    for(int i = 0; i < n.number_of_masters; ++i) add_masters(n.masters[i], w / n.number_of_masters, out, depth + 1);
+  }
+
+  void update_hanging()
+  {
+    for(std::size_t i = 0; i < hang_masters.size(); ++i) recompute_hanging(Index(i));
+  }
+  void recompute_hanging(Index i)
+  {
+    Vec3 p{{0, 0, 0}};
+    for(const auto& x : hang_masters[i]) p = add(p, mul(P[x.first], x.second));
+    P[m.hanging_nodes[i].vertex] = p;
+  }
+
+  // -----------------------------------------------------------------------------------------------
+  // projection
+  Vec3 clamp_planes(Index v, Vec3 x) const
+  {
+    for(int a = 0; a < 3; ++a) {
+      if(planes[v] & (1 << (2 * a))) x[a] = box_lo[a];
+      if(planes[v] & (1 << (2 * a + 1))) x[a] = box_hi[a];
+    }
+    return x;
+  }
+  // the closest point of the vertex's region, unless the whole surface has a much closer one (the
+  // region was guessed wrong)
+  Vec3 closest_on_surface(const Vec3& x, int region, double h) const
+  {
+    const Point_3 p(x[0], x[1], x[2]);
+    const Vec3 g = vec(d.closest_point(p));
+    if(region >= 0 && std::size_t(region) < region_trees.size() && region_trees[std::size_t(region)]) {
+      const Vec3 r = vec(region_trees[std::size_t(region)]->closest_point(p));
+      if(norm(sub(r, x)) <= norm(sub(g, x)) + 0.5 * h) return r;
+    }
+    return g;
+  }
+  Vec3 closest_on_curve(const Vec3& x, int curve) const
+  {
+    return vec(curve_trees[std::size_t(curve)]->closest_point(Point_3(x[0], x[1], x[2])));
+  }
+  Vec3 constrain(Index v, const Vec3& x) const
+  {
+    switch(kind[v]) {
+    case SURFACE: return clamp_planes(v, closest_on_surface(clamp_planes(v, x), region_of_vertex(v), hloc[v]));
+    case CURVE: return clamp_planes(v, closest_on_curve(x, curve_of[v]));
+    case CORNER: case HANGING: return P[v];
+    default: return clamp_planes(v, x);
+    }
+  }
+  int region_of_vertex(Index v) const { return v < vregion.size() ? vregion[v] : -1; }
+
+  void place_twins()
+  {
+    // a twin whose closest point lies on an open edge of the input (a hole) caps the hole: it
+    // stays near its inner vertex, pushed out along the staircase normal, and is not projected
+    std::unique_ptr<Segment_tree> open_tree;
+    std::vector<Segment_3> open_segments;
+    if(fc)
+      for(const auto& e : fc->edges())
+        if(e.kind & FeatureCurves::OPEN) open_segments.emplace_back(fc->point(e.vertices[0]), fc->point(e.vertices[1]));
+    if(!open_segments.empty()) {
+      open_tree = std::make_unique<Segment_tree>(open_segments.begin(), open_segments.end());
+      open_tree->accelerate_distance_queries();
+    }
+    const double tiny = 1e-9 * (box_hi[0] - box_lo[0] + box_hi[1] - box_lo[1] + box_hi[2] - box_lo[2]);
+    // outward normal of the staircase at each surface vertex
+    std::vector<Vec3> normal(P.size(), Vec3{{0, 0, 0}});
+    for(std::size_t f : top_faces) {
+      const auto& q = m.boundary_faces[f].vertices;
+      Vec3 n = cross(sub(P[q[2]], P[q[0]]), sub(P[q[3]], P[q[1]]));
+      const double l = norm(n);
+      if(l > 0) n = mul(n, 1.0 / l);
+      for(int i = 0; i < 4; ++i) normal[q[i]] = add(normal[q[i]], n);
+    }
+    // unit normals of the staircase faces at each surface vertex (at most a few distinct ones)
+    fnormals.assign(P.size(), {});
+    for(std::size_t f : top_faces) {
+      const auto& q = m.boundary_faces[f].vertices;
+      Vec3 n = cross(sub(P[inner_of[q[2]]], P[inner_of[q[0]]]), sub(P[inner_of[q[3]]], P[inner_of[q[1]]]));
+      const double l = norm(n);
+      if(!(l > 0)) continue;
+      n = mul(n, 1.0 / l);
+      for(int i = 0; i < 4; ++i) {
+        auto& L = fnormals[q[i]];
+        if(std::none_of(L.begin(), L.end(), [&](const Vec3& x) { return dot(x, n) > 0.999; })) L.push_back(n);
+      }
+    }
+    for(Index v : inner) {
+      const Index t = twin[v];
+      if(kind[t] == HANGING) continue;
+      ++rep.surface_vertices;
+      Vec3 c = clamp_planes(t, vec(d.closest_point(Point_3(P[v][0], P[v][1], P[v][2]))));
+      // the twin must lie in front of every staircase face at v (else its buffer hexes are flat
+      // or inverted: a closest point on the other side of a sharp edge); if the closest point does
+      // not, the surface point along the mean face normal is taken
+      bool visible = true;
+      const double dist = norm(sub(c, P[v]));
+      for(const Vec3& n : fnormals[t]) if(dot(sub(c, P[v]), n) < 0.2 * dist) visible = false;
+      if(!visible && norm(normal[t]) > 0) {
+        Point_3 hit;
+        const Vec3 dir = mul(normal[t], 1.0 / norm(normal[t]));
+        if(d.first_ray_hit(Point_3(P[v][0], P[v][1], P[v][2]), typename GT::Vector_3(dir[0], dir[1], dir[2]), hit) &&
+           norm(sub(vec(hit), P[v])) < 4 * hloc[v])
+          c = clamp_planes(t, vec(hit));
+      }
+      bool cap = false;
+      if(open_tree && open_tree->squared_distance(Point_3(c[0], c[1], c[2])) <= tiny * tiny) cap = true;
+      if(cap) {
+        kind[t] = CAP;
+        ++rep.cap_vertices;
+        const double l = norm(normal[t]);
+        P[t] = clamp_planes(t, l > 0 ? add(P[v], mul(normal[t], 0.5 * hloc[v] / l)) : P[v]);
+      } else
+        P[t] = c;
+    }
+    update_hanging();
+  }
+
+  // -----------------------------------------------------------------------------------------------
+  // 3. features
+  void snap_features()
+  {
+    const auto& curves = fc->curves();
+    curve_trees.clear();
+    curve_of.assign(P.size(), -1);
+    cnbrs.assign(P.size(), {});
+    curve_segments.assign(curves.size(), {});
+    for(std::size_t c = 0; c < curves.size(); ++c) {
+      const auto& cv = curves[c];
+      auto& segs = curve_segments[c];
+      for(std::size_t i = 0; i + 1 < cv.vertices.size(); ++i)
+        segs.emplace_back(fc->point(cv.vertices[i]), fc->point(cv.vertices[i + 1]));
+      if(cv.closed && cv.vertices.size() > 2) segs.emplace_back(fc->point(cv.vertices.back()), fc->point(cv.vertices.front()));
+      curve_trees.push_back(std::make_unique<Segment_tree>(segs.begin(), segs.end()));
+      curve_trees.back()->accelerate_distance_queries();
+    }
+    // outer-surface vertices that may carry a feature: surface twins (not hanging, not caps)
+    std::vector<Index> outer;
+    for(Index v : inner) if(kind[twin[v]] == SURFACE) outer.push_back(twin[v]);
+    if(outer.empty()) return;
+    std::vector<Point_3> opts;
+    for(Index v : outer) opts.emplace_back(P[v][0], P[v][1], P[v][2]);
+    // nearest outer vertex to a point: a kd-tree would do; a sorted grid of buckets is enough here
+    auto nearest = [&](const Vec3& x, const std::vector<char>& allowed) {
+      Index best = NONE;
+      double bd = std::numeric_limits<double>::max();
+      for(std::size_t i = 0; i < outer.size(); ++i) {
+        if(!allowed[outer[i]]) continue;
+        const double dd = dot(sub(P[outer[i]], x), sub(P[outer[i]], x));
+        if(dd < bd) { bd = dd; best = outer[i]; }
+      }
+      return best;
+    };
+    std::vector<char> allowed(P.size(), 0);
+    for(Index v : outer) allowed[v] = 1;
+    // curves shorter than two cells are not followed (on a coarse organic mesh, a 30 degree
+    // angle finds many tiny ones); the corners are those of the curves followed
+    std::vector<char> follow(curves.size(), 0);
+    std::unordered_set<Index> wanted_corners;
+    for(std::size_t c = 0; c < curves.size(); ++c) {
+      double len = 0;
+      for(const auto& sg : curve_segments[c]) len += std::sqrt(CGAL::to_double(sg.squared_length()));
+      const Vec3 p0 = vec(fc->point(curves[c].vertices.front()));
+      const Index v0 = nearest(p0, allowed);
+      if(v0 == NONE || len < 2 * hloc[v0]) { ++rep.curves_skipped; continue; }
+      follow[c] = 1;
+      if(!curves[c].closed) { wanted_corners.insert(curves[c].vertices.front()); wanted_corners.insert(curves[c].vertices.back()); }
+    }
+    // corners first: the nearest twin whose inner vertex sees the corner in front of its faces
+    std::vector<Index> corner_vertex(fc->corners().size(), NONE);
+    std::unordered_map<Index, Index> corner_index;
+    for(std::size_t k = 0; k < fc->corners().size(); ++k) corner_index[fc->corners()[k]] = Index(k);
+    for(std::size_t k = 0; k < fc->corners().size(); ++k) {
+      if(!wanted_corners.count(fc->corners()[k])) continue;
+      const Vec3 c = vec(fc->point(fc->corners()[k]));
+      Index v = NONE;
+      double bd = std::numeric_limits<double>::max();
+      for(Index u : outer) {
+        if(!allowed[u]) continue;
+        const double dd = norm(sub(P[u], c));
+        if(dd >= bd || dd > 3 * hloc[u]) continue;
+        bool sees = true;
+        for(const Vec3& n : fnormals[u]) if(dot(sub(c, P[inner_of[u]]), n) <= 0) sees = false;
+        if(sees) { bd = dd; v = u; }
+      }
+      if(v == NONE) {   // none sees it: the nearest
+        v = nearest(c, allowed);
+        if(v != NONE && norm(sub(P[v], c)) > 3 * hloc[v]) v = NONE;
+      }
+      if(v == NONE) continue;
+      corner_vertex[k] = v;
+      allowed[v] = 0;
+      kind[v] = CORNER;
+      P[v] = clamp_planes(v, c);
+      ++rep.corner_vertices;
+    }
+    // curves: shortest paths on the outer surface between their end vertices
+    std::vector<char> used(P.size(), 0);
+    for(std::size_t c = 0; c < curves.size(); ++c) {
+      if(!follow[c]) continue;
+      const auto& cv = curves[c];
+      std::vector<Vec3> pts;
+      for(Index i : cv.vertices) pts.push_back(vec(fc->point(i)));
+      // waypoints: the ends (corners), plus, for closed curves, three points around the loop
+      std::vector<std::size_t> way;
+      if(cv.closed) { const std::size_t n = pts.size(); way = {0, n / 3, 2 * n / 3, 0}; }
+      else way = {0, pts.size() - 1};
+      std::vector<Index> wv;
+      bool ok = true;
+      for(std::size_t k = 0; k < way.size(); ++k) {
+        Index v = NONE;
+        auto it = corner_index.find(cv.vertices[way[k]]);
+        if(it != corner_index.end()) v = corner_vertex[it->second];
+        else if(k + 1 == way.size() && cv.closed) v = wv.front();
+        else {
+          std::vector<char> al(P.size(), 0);
+          for(Index u : outer) al[u] = kind[u] == SURFACE && !used[u];
+          v = nearest(pts[way[k]], al);
+          if(v != NONE && norm(sub(P[v], pts[way[k]])) > 2 * hloc[v]) v = NONE;
+        }
+        if(v == NONE) { ok = false; break; }
+        wv.push_back(v);
+      }
+      if(!ok || wv.size() < 2) {
+        ++rep.curves_missed; continue;
+      }
+      // arc length of the curve at its vertices
+      std::vector<double> arc{0};
+      for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
+      std::vector<std::vector<Index>> pieces;
+      std::vector<Index> marked;
+      for(std::size_t k = 0; k + 1 < wv.size() && ok; ++k) {
+        pieces.push_back(shortest_path(wv[k], wv[k + 1], int(c), used));
+        if(pieces.back().empty()) ok = false;
+        for(std::size_t i = 1; i + 1 < pieces.back().size(); ++i) { used[pieces.back()[i]] = 1; marked.push_back(pieces.back()[i]); }
+      }
+      if(!ok) {
+        for(Index v : marked) used[v] = 0;
+        ++rep.curves_missed; continue;
+      }
+      ++rep.curves_captured;
+      // snap the path vertices onto the curve, spaced along it as they are along the path (a
+      // closest-point snap could put two of them on one point)
+      std::vector<Index> path;
+      for(std::size_t k = 0; k < pieces.size(); ++k) {
+        const auto& pc = pieces[k];
+        const double s0 = arc[way[k]], s1 = (k + 1 == pieces.size() && cv.closed) ? arc.back() : arc[way[k + 1]];
+        std::vector<double> cum{0};
+        for(std::size_t i = 1; i < pc.size(); ++i) cum.push_back(cum.back() + norm(sub(P[pc[i]], P[pc[i - 1]])));
+        for(std::size_t i = 0; i < pc.size(); ++i) {
+          const Index v = pc[i];
+          if(!path.empty() && path.back() == v) continue;
+          path.push_back(v);
+          used[v] = 1;
+          if(kind[v] != SURFACE) continue;   // corners stay
+          kind[v] = CURVE;
+          curve_of[v] = int(c);
+          const double t = cum.back() > 0 ? cum[i] / cum.back() : 0;
+          P[v] = clamp_planes(v, point_at(c, arc, s0 + t * (s1 - s0)));
+          ++rep.curve_vertices;
+        }
+      }
+      for(std::size_t i = 0; i + 1 < path.size(); ++i) {
+        feature_edges.insert(capture_edge_key(path[i], path[i + 1]));
+        cnbrs[path[i]].push_back(path[i + 1]);
+        cnbrs[path[i + 1]].push_back(path[i]);
+      }
+    }
+    update_hanging();
+  }
+
+  Vec3 point_at(std::size_t c, const std::vector<double>& arc, double s) const
+  {
+    const auto& segs = curve_segments[c];
+    std::size_t i = std::size_t(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin());
+    i = i == 0 ? 0 : (std::min)(i - 1, segs.size() - 1);
+    const double l = arc[i + 1] - arc[i];
+    const double t = l > 0 ? (std::min)(1.0, (std::max)(0.0, (s - arc[i]) / l)) : 0;
+    const Vec3 a = vec(segs[i].source()), b = vec(segs[i].target());
+    return add(a, mul(sub(b, a), t));
+  }
+
+  // Dijkstra on the top-face edges: cost = length x (1 + w (distance of both ends to the curve) / h)
+  std::vector<Index> shortest_path(Index from, Index to, int curve, const std::vector<char>& used)
+  {
+    if(from == to) return {};
+    std::unordered_map<Index, double> dist;
+    std::unordered_map<Index, Index> pred;
+    typedef std::pair<double, Index> QE;
+    std::priority_queue<QE, std::vector<QE>, std::greater<QE>> q;
+    dist[from] = 0;
+    q.push({0, from});
+    auto dcurve = [&](Index v) { return norm(sub(closest_on_curve(P[v], curve), P[v])); };
+    const Vec3 a = P[from], b = P[to];
+    const double span = norm(sub(a, b));
+    while(!q.empty()) {
+      const auto [dv, v] = q.top();
+      q.pop();
+      if(dv > dist[v]) continue;
+      if(v == to) break;
+      for(Index w : snbrs[v]) {
+        if(w != to && (used[w] || kind[w] == CORNER || kind[w] == CAP || kind[w] == HANGING)) continue;
+        // stay near the curve: at most a few cells away and within the ends' neighbourhood
+        const double dw = dcurve(w);
+        if(dw > 3 * hloc[w]) continue;
+        if(norm(sub(P[w], a)) > span + 4 * hloc[w] && norm(sub(P[w], b)) > span + 4 * hloc[w]) continue;
+        // a vertex whose inner vertex does not see its curve point in front of its staircase faces
+        // would make flat buffer cells once snapped: allowed, at a price
+        double penalty = 0;
+        if(w != to) {
+          const Vec3 cp = closest_on_curve(P[w], curve);
+          for(const Vec3& n : fnormals[w]) if(dot(sub(cp, P[inner_of[w]]), n) <= 0) penalty = 10;
+        }
+        const double l = norm(sub(P[w], P[v]));
+        const double cost = dv + l * (1 + penalty + opt.snap_weight * (dcurve(v) + dw) / hloc[w]);
+        auto it = dist.find(w);
+        if(it == dist.end() || cost < it->second) { dist[w] = cost; pred[w] = v; q.push({cost, w}); }
+      }
+    }
+    if(!pred.count(to)) {
+      return {};
+    }
+    std::vector<Index> path{to};
+    while(path.back() != from) path.push_back(pred[path.back()]);
+    std::reverse(path.begin(), path.end());
+    return path;
+  }
+
+  // surface regions: input triangles between feature edges; top faces between feature paths
+  void build_regions()
+  {
+    vregion.assign(P.size(), -1);
+    if(!fc) return;
+    const auto& tris = d.triangle_indices();
+    // input: union-find over triangles across non-feature edges
+    std::unordered_set<std::uint64_t> fe;
+    for(const auto& e : fc->edges()) fe.insert(capture_edge_key(e.vertices[0], e.vertices[1]));
+    std::vector<Index> parent(tris.size());
+    for(Index t = 0; t < tris.size(); ++t) parent[t] = t;
+    auto find = [&](Index x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; };
+    std::unordered_map<std::uint64_t, Index> first_face;
+    for(Index t = 0; t < tris.size(); ++t)
+      for(int k = 0; k < 3; ++k) {
+        const std::uint64_t key = capture_edge_key(tris[t][std::size_t(k)], tris[t][std::size_t((k + 1) % 3)]);
+        if(fe.count(key)) continue;
+        auto it = first_face.find(key);
+        if(it == first_face.end()) first_face[key] = t;
+        else { const Index x = find(t), y = find(it->second); if(x != y) parent[(std::max)(x, y)] = (std::min)(x, y); }
+      }
+    std::vector<int> tri_region(tris.size(), -1);
+    int nreg = 0;
+    std::vector<int> root_region(tris.size(), -1);
+    for(Index t = 0; t < tris.size(); ++t) {
+      const Index r = find(t);
+      if(root_region[r] < 0) root_region[r] = nreg++;
+      tri_region[t] = root_region[r];
+    }
+    region_triangles.assign(std::size_t(nreg), {});
+    for(Index t = 0; t < tris.size(); ++t) region_triangles[std::size_t(tri_region[t])].push_back(d.triangle(t));
+    region_trees.clear();
+    region_trees.resize(std::size_t(nreg));
+    // mesh: components of top faces across non-feature edges
+    const std::size_t nf = top_faces.size();
+    std::vector<Index> fparent(nf);
+    for(Index i = 0; i < nf; ++i) fparent[i] = i;
+    auto ffind = [&](Index x) { while(fparent[x] != x) { fparent[x] = fparent[fparent[x]]; x = fparent[x]; } return x; };
+    std::unordered_map<std::uint64_t, Index> edge_face;
+    for(Index i = 0; i < nf; ++i) {
+      const auto& q = m.boundary_faces[top_faces[i]].vertices;
+      for(int k = 0; k < 4; ++k) {
+        const std::uint64_t key = capture_edge_key(q[k], q[(k + 1) % 4]);
+        if(feature_edges.count(key)) continue;
+        auto it = edge_face.find(key);
+        if(it == edge_face.end()) edge_face[key] = i;
+        else { const Index x = ffind(i), y = ffind(it->second); if(x != y) fparent[(std::max)(x, y)] = (std::min)(x, y); }
+      }
+    }
+    // each component votes with the regions of its faces' centres' closest triangles; a component
+    // that one region dominates (a feature chain was missed, or a face's centre is closest to
+    // the other side of a sharp edge) takes it, otherwise each face keeps its own
+    std::vector<int> own(nf);
+    std::unordered_map<Index, std::unordered_map<int, int>> votes;
+    for(Index i = 0; i < nf; ++i) {
+      const auto& q = m.boundary_faces[top_faces[i]].vertices;
+      Vec3 c{{0, 0, 0}};
+      for(int k = 0; k < 4; ++k) c = add(c, mul(P[q[k]], 0.25));
+      own[i] = tri_region[d.closest_triangle(Point_3(c[0], c[1], c[2]))];
+      ++votes[ffind(i)][own[i]];
+    }
+    std::unordered_map<Index, int> comp_region;
+    for(const auto& cv : votes) {
+      int best = -1, bc = -1, total = 0;
+      for(const auto& x : cv.second) {
+        total += x.second;
+        if(x.second > bc || (x.second == bc && x.first < best)) { bc = x.second; best = x.first; }
+      }
+      comp_region[cv.first] = 5 * bc >= 4 * total ? best : -1;
+    }
+    face_region.assign(nf, -1);
+    std::vector<std::unordered_map<int, int>> vvotes(P.size());
+    for(Index i = 0; i < nf; ++i) {
+      const int r = comp_region[ffind(i)];
+      face_region[i] = r >= 0 ? r : own[i];
+      for(Index v : m.boundary_faces[top_faces[i]].vertices) ++vvotes[v][face_region[i]];
+    }
+    for(Index v = 0; v < P.size(); ++v) {
+      int best = -1, bc = -1;
+      for(const auto& x : vvotes[v]) if(x.second > bc || (x.second == bc && x.first < best)) { bc = x.second; best = x.first; }
+      vregion[v] = best;
+    }
+    for(Index i = 0; i < nf; ++i) {
+      const std::size_t r = std::size_t(face_region[i]);
+      if(!region_trees[r] && !region_triangles[r].empty()) {
+        region_trees[r] = std::make_unique<Tree>(region_triangles[r].begin(), region_triangles[r].end());
+        region_trees[r]->accelerate_distance_queries();
+      }
+    }
+  }
+
+  // -----------------------------------------------------------------------------------------------
+  // 4. optimisation
+  double cell_quality(Index c) const
+  {
+    Vec3 x[8];
+    for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
+    return (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
+  }
+  void affected_cells(Index v, std::vector<Index>& out) const
+  {
+    out.clear();
+    for(Index k = cstart[v]; k < cstart[v + 1]; ++k) out.push_back(cinc[k]);
+    for(Index h : deps[v]) for(Index k = cstart[h]; k < cstart[h + 1]; ++k) out.push_back(cinc[k]);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+  double quality_of(const std::vector<Index>& cells) const
+  {
+    double q = 1;
+    for(Index c : cells) q = (std::min)(q, cell_quality(c));
+    return q;
+  }
+  void move(Index v, const Vec3& x)
+  {
+    P[v] = x;
+    for(Index h : deps[v]) recompute_hanging(hang_of[h]);
+  }
+  bool movable(Index v) const { return kind[v] != CORNER && kind[v] != HANGING; }
+
+  Vec3 smoothing_target(Index v) const
+  {
+    const auto& L = kind[v] == CURVE ? cnbrs[v] : (kind[v] == SURFACE || kind[v] == CAP || kind[v] == RELEASED) ? snbrs[v] : nbrs[v];
+    if(L.empty()) return P[v];
+    Vec3 s{{0, 0, 0}};
+    for(Index w : L) s = add(s, P[w]);
+    return mul(s, 1.0 / double(L.size()));
+  }
+
+  // returns true if the vertex moved
+  bool improve(Index v, std::vector<Index>& cells)
+  {
+    affected_cells(v, cells);
+    const Vec3 x0 = P[v];
+    q_old.resize(cells.size());
+    double f0 = 1;
+    for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = cell_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); }
+    Vec3 best = x0;
+    double fb = f0;
+    const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+    // a move must raise the minimum, and no cell may fall below min(its quality, keep_quality):
+    // the worst cell does not get better by making a good one bad
+    auto trial = [&](const Vec3& y) {
+      const Vec3 x = constrain(v, y);
+      if(norm(sub(x, x0)) < 1e-12 * h) return;
+      move(v, x);
+      double f = 1;
+      for(std::size_t i = 0; i < cells.size(); ++i) {
+        const double q = cell_quality(cells[i]);
+        if(q < (std::min)(q_old[i], opt.keep_quality)) return;
+        f = (std::min)(f, q);
+      }
+      if(f > fb) { fb = f; best = x; }
+    };
+    const Vec3 s = smoothing_target(v);
+    trial(s);
+    trial(mul(add(s, x0), 0.5));
+    if(kind[v] == SURFACE || kind[v] == CURVE) trial(x0);   // back onto the surface/curve
+    // numerical gradient of the minimum quality
+    const double eps = 1e-4 * h;
+    Vec3 g{{0, 0, 0}};
+    for(int a = 0; a < 3; ++a) {
+      Vec3 y = x0; y[a] += eps;
+      move(v, y);
+      g[a] = (quality_of(cells) - f0) / eps;
+    }
+    const double gn = norm(g);
+    if(gn > 0)
+      for(double alpha : {0.3, 0.1, 0.03, 0.01}) trial(add(x0, mul(g, alpha * h / gn)));
+    move(v, fb > f0 ? best : x0);
+    return fb > f0;
+  }
+
+  template <typename Visitor>
+  bool optimise(Visitor& visitor)
+  {
+    std::vector<Index> cells, work;
+    std::vector<char> in_work(P.size(), 0);
+    double qmin = 1;
+    for(int pass = 0; pass < opt.passes; ++pass) {
+      work.clear();
+      qmin = 1;
+      for(Index c = 0; c < m.hexahedra.size(); ++c) {
+        const double q = cell_quality(c);
+        qmin = (std::min)(qmin, q);
+        if(q >= opt.target_quality) continue;
+        for(Index v : m.hexahedra[c]) {
+          if(kind[v] == HANGING) {
+            for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
+          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
+        }
+      }
+      rep.optimisation_passes = std::size_t(pass);
+      if(work.empty()) break;
+      std::sort(work.begin(), work.end());
+      std::size_t moved = 0;
+      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
+      if(!visitor.go_further(double(pass + 1) / opt.passes)) return false;
+      if(moved == 0) break;
+    }
+    // cells still inverted: release their surface vertices into the volume and try again
+    bool released = false;
+    for(Index c = 0; c < m.hexahedra.size(); ++c)
+      if(cell_quality(c) <= 0)
+        for(Index v : m.hexahedra[c])
+          if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) { kind[v] = RELEASED; released = true; rep.unreached.push_back(P[v]); }
+    if(released)
+      for(int pass = 0; pass < opt.passes; ++pass) {
+        std::size_t moved = 0;
+        for(Index c = 0; c < m.hexahedra.size(); ++c)
+          if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) if(movable(v) && improve(v, cells)) ++moved;
+        if(moved == 0) break;
+      }
+    qmin = 1;
+    for(Index c = 0; c < m.hexahedra.size(); ++c) qmin = (std::min)(qmin, cell_quality(c));
+    rep.min_scaled_jacobian = qmin;
+    return true;
+  }
+
+  // The last resort: a buffer cell the optimisation could not make valid is removed; the staircase
+  // face under it and the side faces of its buffer neighbours become boundary faces (of the top
+  // face's patch). Interior cells cannot be invalid: they start valid and no move makes a valid
+  // cell invalid.
+  void remove_invalid_buffer_cells()
+  {
+    const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
+    std::vector<char> gone(m.hexahedra.size(), 0);
+    std::size_t n = 0;
+    for(std::size_t c = first; c < m.hexahedra.size(); ++c)
+      if(!(cell_quality(Index(c)) > opt.min_valid_quality)) { gone[c] = 1; ++n; }
+    if(n == 0) return;
+    // side faces of the buffer cells, by their bottom edge
+    std::unordered_map<std::uint64_t, std::vector<std::pair<Index, int>>> by_edge;
+    for(std::size_t c = first; c < m.hexahedra.size(); ++c)
+      for(int i = 0; i < 4; ++i)
+        by_edge[capture_edge_key(m.hexahedra[c][i], m.hexahedra[c][(i + 1) % 4])].push_back({Index(c), i});
+    std::unordered_map<Index, std::array<Index, 2>> masters_of;
+    for(const auto& hn : m.hanging_nodes)
+      if(hn.number_of_masters == 2) masters_of[hn.vertex] = {{hn.masters[0], hn.masters[1]}};
+    // a removed fine cell takes the coarse buffer cell beside it (whose side it half covers) along
+    for(bool changed = true; changed;) {
+      changed = false;
+      for(std::size_t c = first; c < m.hexahedra.size(); ++c) {
+        if(!gone[c]) continue;
+        for(int i = 0; i < 4; ++i) {
+          const Index a = m.hexahedra[c][i], b = m.hexahedra[c][(i + 1) % 4];
+          for(Index hv : {a, b}) {
+            auto mo = masters_of.find(hv);
+            if(mo == masters_of.end()) continue;
+            const Index other = hv == a ? b : a;
+            if(mo->second[0] != other && mo->second[1] != other) continue;
+            auto e = by_edge.find(capture_edge_key(mo->second[0], mo->second[1]));
+            if(e == by_edge.end()) continue;
+            for(const auto& ci : e->second) if(!gone[ci.first]) { gone[ci.first] = 1; ++n; changed = true; }
+          }
+        }
+      }
+    }
+    rep.removed_buffer_cells = n;
+    std::vector<int> top_patch(m.hexahedra.size(), 6);
+    std::vector<typename HexMesh::Boundary_face> faces;
+    for(const auto& f : m.boundary_faces) {
+      if(f.cell >= first) top_patch[f.cell] = f.patch;
+      if(!gone[f.cell]) faces.push_back(f);
+    }
+    auto side = [&](Index c, int i) {
+      const auto& h = m.hexahedra[c];
+      return std::array<Index, 4>{{h[i], h[(i + 1) % 4], h[(i + 1) % 4 + 4], h[i + 4]}};
+    };
+    std::unordered_map<std::uint64_t, Index> mid;
+    for(const auto& hn : m.hanging_nodes)
+      if(hn.number_of_masters == 2) mid[capture_edge_key(hn.masters[0], hn.masters[1])] = hn.vertex;
+    for(std::size_t c = first; c < m.hexahedra.size(); ++c) {
+      if(!gone[c]) continue;
+      const auto& h = m.hexahedra[c];
+      // the staircase face becomes a boundary face of the cell under it
+      const std::array<Index, 4> bottom{{h[0], h[1], h[2], h[3]}};
+      faces.push_back({bottom, buffer_owner[c - first], top_patch[c]});
+      // neighbours across each side (the same edge, or its two halves around a hanging midpoint)
+      for(int i = 0; i < 4; ++i) {
+        const Index a = h[i], b = h[(i + 1) % 4];
+        std::vector<std::uint64_t> keys{capture_edge_key(a, b)};
+        auto it = mid.find(keys[0]);
+        if(it != mid.end()) { keys = {capture_edge_key(a, it->second), capture_edge_key(it->second, b)}; }
+        for(std::uint64_t k : keys) {
+          auto e = by_edge.find(k);
+          if(e == by_edge.end()) continue;
+          for(const auto& ci : e->second)
+            if(ci.first != c && !gone[ci.first]) {
+              faces.push_back({side(ci.first, ci.second), ci.first, top_patch[ci.first]});
+            }
+        }
+      }
+    }
+    // compact the cells
+    std::vector<Index> new_index(m.hexahedra.size(), NONE);
+    std::size_t k = 0;
+    for(std::size_t c = 0; c < m.hexahedra.size(); ++c)
+      if(!gone[c]) { new_index[c] = Index(k); m.hexahedra[k] = m.hexahedra[c]; m.cell_levels[k] = m.cell_levels[c]; ++k; }
+    m.hexahedra.resize(k);
+    m.cell_levels.resize(k);
+    for(auto& f : faces) f.cell = new_index[f.cell];
+    m.boundary_faces.swap(faces);
+    rep.buffer_cells -= n;
+  }
+
+  // after removing cells: vertices no cell uses go, and so do the hanging nodes they were
+  void drop_unused_vertices()
+  {
+    std::vector<Index> to(m.points.size(), NONE);
+    for(const auto& h : m.hexahedra) for(Index v : h) to[v] = 0;
+    Index n = 0;
+    for(std::size_t v = 0; v < to.size(); ++v)
+      if(to[v] == 0) { to[v] = n; m.points[n] = m.points[v]; ++n; }
+    m.points.resize(n);
+    for(auto& h : m.hexahedra) for(Index& v : h) v = to[v];
+    for(auto& f : m.boundary_faces) for(Index& v : f.vertices) v = to[v];
+    std::vector<typename HexMesh::Hanging_node> hn;
+    for(auto h : m.hanging_nodes) {
+      if(to[h.vertex] == NONE) continue;
+      bool ok = true;
+      for(int i = 0; i < h.number_of_masters; ++i) if(to[h.masters[i]] == NONE) ok = false; else h.masters[i] = to[h.masters[i]];
+      if(!ok) continue;   // cannot happen: a used hanging vertex lies in a cell having its masters
+      h.vertex = to[h.vertex];
+      hn.push_back(h);
+    }
+    m.hanging_nodes.swap(hn);
+  }
+
+  void assign_patches()
+  {
+    if(d.patch_names().size() <= 1) return;
+    for(std::size_t f : top_faces) {
+      auto& bf = m.boundary_faces[f];
+      Vec3 c{{0, 0, 0}};
+      for(int k = 0; k < 4; ++k) c = add(c, mul(P[bf.vertices[k]], 0.25));
+      bf.patch = 6 + d.patch(d.closest_triangle(Point_3(c[0], c[1], c[2])));
+    }
+  }
+
+  typedef typename std::vector<Segment_3>::const_iterator Seg_it;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Segment_tree;
+  typedef typename std::vector<Triangle_3>::const_iterator Tri_it;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_triangle_primitive<GT, Tri_it>>> Tree;
+
+  HexMesh& m;
+  const Domain& d;
+  const FeatureCurves* fc;
+  Options opt;
+  Boundary_capture_report rep;
+  double box_lo[3], box_hi[3];
+  std::vector<Vec3> P;
+  std::vector<double> q_old;
+  std::vector<std::vector<Vec3>> fnormals;   // unit staircase face normals at each twin
+  std::vector<Index> twin, inner, inner_of;
+  std::vector<std::size_t> top_faces;
+  std::vector<Index> buffer_owner;   // the staircase cell under each buffer cell
+  std::vector<Kind> kind;
+  std::vector<std::uint8_t> planes;
+  std::vector<Index> hang_of;
+  std::vector<std::vector<std::pair<Index, double>>> hang_masters;
+  std::vector<Index> cstart, cinc;
+  std::vector<std::vector<Index>> deps, nbrs, snbrs;
+  std::vector<std::vector<Index>> cnbrs;
+  std::vector<double> hloc;
+  std::vector<std::vector<Segment_3>> curve_segments;
+  std::vector<std::unique_ptr<Segment_tree>> curve_trees;
+  std::vector<int> curve_of;
+  std::unordered_set<std::uint64_t> feature_edges;
+  std::vector<std::vector<Triangle_3>> region_triangles;
+  std::vector<std::unique_ptr<Tree>> region_trees;
+  std::vector<int> face_region, vregion;
+};
+
+} // namespace internal
+} // namespace Hex_meshing_3
+} // namespace CGAL
+
+#endif // CGAL_HEX_MESHING_3_INTERNAL_BOUNDARY_CAPTURE_3_H
