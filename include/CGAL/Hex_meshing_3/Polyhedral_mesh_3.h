@@ -182,7 +182,10 @@ struct Polyhedral_mesh_3
       } else if(j - i == 1) {
         auto it = std::lower_bound(bkeys.begin(), bkeys.end(), std::make_pair(items[i].key, -1));
         if(it == bkeys.end() || it->first != items[i].key)
-          throw std::logic_error("Polyhedral_mesh_3: a face bounds one cell but is not a boundary face");
+          throw std::logic_error("Polyhedral_mesh_3: a face bounds one cell but is not a boundary face (cell " +
+                                 std::to_string(items[i].cell) + ", vertices " + std::to_string(items[i].key[0]) + " " +
+                                 std::to_string(items[i].key[1]) + " " + std::to_string(items[i].key[2]) + " " +
+                                 std::to_string(items[i].key[3]) + ")");
         boundary.push_back({it->second, items[i].cell, items[i].poly});
       } else
         throw std::logic_error("Polyhedral_mesh_3: a face is shared by more than two cells");

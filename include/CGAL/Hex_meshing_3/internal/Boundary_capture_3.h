@@ -225,6 +225,7 @@ struct Boundary_capture_report
   std::vector<std::array<double, 3>> unreached;   ///< surface vertices released to keep cells valid
   std::size_t optimisation_passes = 0;
   std::size_t removed_buffer_cells = 0;   ///< buffer cells that could not be made valid (removed)
+  std::size_t unsnapped_vertices = 0;     ///< curve/corner vertices returned to the surface to untangle
   double min_scaled_jacobian = 0;
 };
 
@@ -244,10 +245,12 @@ public:
   struct Options
   {
     double target_quality = 0.6;   ///< cells below this minimum scaled Jacobian are optimised
-    int passes = 30;               ///< optimisation sweeps at most
+    int passes = 10;               ///< optimisation sweeps at most (more sweeps do not raise the worst cells further)
     double snap_weight = 4;        ///< bias of the feature paths towards their curve
+    double turn_penalty = 20;      ///< extra cost (x edge length) of a path turning inside a top face
     double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
     double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
+    double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
   };
 
   Boundary_capture_3(HexMesh& mesh, const Domain& domain, const FeatureCurves* features, const Options& o = Options())
@@ -332,7 +335,9 @@ private:
       for(int i = 0; i < 4; ++i) {
         const Index a = f.vertices[i], b = f.vertices[(i + 1) % 4];
         int common = plane_mask(P[a]) & plane_mask(P[b]);
-        for(int k = 0; k < 4; ++k) common &= plane_mask(P[f.vertices[k]]) ^ 0x3f;
+        int all = 0x3f;
+        for(int k = 0; k < 4; ++k) all &= plane_mask(P[f.vertices[k]]);
+        common &= ~all;
         if(!common) continue;
         int bit = 0;
         while(!(common & (1 << bit))) ++bit;
@@ -394,6 +399,9 @@ private:
       const auto& q = m.boundary_faces[f].vertices;
       for(int i = 0; i < 4; ++i) { snbrs[q[i]].push_back(q[(i + 1) % 4]); snbrs[q[(i + 1) % 4]].push_back(q[i]); }
     }
+    vertex_top_faces.assign(nv, {});
+    for(std::size_t i = 0; i < top_faces.size(); ++i)
+      for(Index v : m.boundary_faces[top_faces[i]].vertices) vertex_top_faces[v].push_back(i);
     for(auto* L : {&nbrs, &snbrs})
       for(auto& l : *L) { std::sort(l.begin(), l.end()); l.erase(std::unique(l.begin(), l.end()), l.end()); }
     // local size: the shortest incident edge of the staircase
@@ -440,12 +448,14 @@ private:
   Vec3 closest_on_surface(const Vec3& x, int region, double h) const
   {
     const Point_3 p(x[0], x[1], x[2]);
-    const Vec3 g = vec(d.closest_point(p));
     if(region >= 0 && std::size_t(region) < region_trees.size() && region_trees[std::size_t(region)]) {
       const Vec3 r = vec(region_trees[std::size_t(region)]->closest_point(p));
+      if(!check_region) return r;
+      const Vec3 g = vec(d.closest_point(p));
       if(norm(sub(r, x)) <= norm(sub(g, x)) + 0.5 * h) return r;
+      return g;
     }
-    return g;
+    return vec(d.closest_point(p));
   }
   Vec3 closest_on_curve(const Vec3& x, int curve) const
   {
@@ -459,6 +469,11 @@ private:
     case CORNER: case HANGING: return P[v];
     default: return clamp_planes(v, x);
     }
+  }
+  int region_of_point(const Vec3& x) const
+  {
+    if(tri_region.empty()) return -1;
+    return tri_region[d.closest_triangle(Point_3(x[0], x[1], x[2]))];
   }
   int region_of_vertex(Index v) const { return v < vregion.size() ? vregion[v] : -1; }
 
@@ -551,20 +566,38 @@ private:
     std::vector<Index> outer;
     for(Index v : inner) if(kind[twin[v]] == SURFACE) outer.push_back(twin[v]);
     if(outer.empty()) return;
-    std::vector<Point_3> opts;
-    for(Index v : outer) opts.emplace_back(P[v][0], P[v][1], P[v][2]);
-    // nearest outer vertex to a point: a kd-tree would do; a sorted grid of buckets is enough here
+    // the outer vertices in a hash grid of cells 3 x the largest local size: every query below
+    // wants a vertex within 3 local sizes, found among the 27 cells around the point
+    double hmax = 0;
+    for(Index v : outer) hmax = (std::max)(hmax, hloc[v]);
+    const double g = 3 * hmax;
+    auto cell_key = [&](const Vec3& x, int dx, int dy, int dz) {
+      const std::int64_t i = std::int64_t(std::floor(x[0] / g)) + dx, j = std::int64_t(std::floor(x[1] / g)) + dy,
+                         k = std::int64_t(std::floor(x[2] / g)) + dz;
+      return std::uint64_t((i & 0x1fffff) | ((j & 0x1fffff) << 21) | ((k & 0x1fffff) << 42));
+    };
+    std::unordered_map<std::uint64_t, std::vector<Index>> grid;
+    for(Index v : outer) grid[cell_key(P[v], 0, 0, 0)].push_back(v);
+    auto for_near = [&](const Vec3& x, auto&& fn) {
+      for(int dz = -1; dz <= 1; ++dz)
+        for(int dy = -1; dy <= 1; ++dy)
+          for(int dx = -1; dx <= 1; ++dx) {
+            auto it = grid.find(cell_key(x, dx, dy, dz));
+            if(it != grid.end()) for(Index u : it->second) fn(u);
+          }
+    };
+    // the nearest allowed outer vertex within 3 local sizes (NONE if none)
     auto nearest = [&](const Vec3& x, const std::vector<char>& allowed) {
       Index best = NONE;
       double bd = std::numeric_limits<double>::max();
-      for(std::size_t i = 0; i < outer.size(); ++i) {
-        if(!allowed[outer[i]]) continue;
-        const double dd = dot(sub(P[outer[i]], x), sub(P[outer[i]], x));
-        if(dd < bd) { bd = dd; best = outer[i]; }
-      }
+      for_near(x, [&](Index u) {
+        if(!allowed[u]) return;
+        const double dd = dot(sub(P[u], x), sub(P[u], x));
+        if(dd <= 9 * hloc[u] * hloc[u] && (dd < bd || (dd == bd && u < best))) { bd = dd; best = u; }
+      });
       return best;
     };
-    std::vector<char> allowed(P.size(), 0);
+    std::vector<char> allowed(P.size(), 0), al(P.size(), 0);
     for(Index v : outer) allowed[v] = 1;
     // curves shorter than two cells are not followed (on a coarse organic mesh, a 30 degree
     // angle finds many tiny ones); the corners are those of the curves followed
@@ -588,14 +621,14 @@ private:
       const Vec3 c = vec(fc->point(fc->corners()[k]));
       Index v = NONE;
       double bd = std::numeric_limits<double>::max();
-      for(Index u : outer) {
-        if(!allowed[u]) continue;
+      for_near(c, [&](Index u) {
+        if(!allowed[u]) return;
         const double dd = norm(sub(P[u], c));
-        if(dd >= bd || dd > 3 * hloc[u]) continue;
+        if(dd > bd || (dd == bd && u > v) || dd > 3 * hloc[u]) return;
         bool sees = true;
         for(const Vec3& n : fnormals[u]) if(dot(sub(c, P[inner_of[u]]), n) <= 0) sees = false;
         if(sees) { bd = dd; v = u; }
-      }
+      });
       if(v == NONE) {   // none sees it: the nearest
         v = nearest(c, allowed);
         if(v != NONE && norm(sub(P[v], c)) > 3 * hloc[v]) v = NONE;
@@ -626,7 +659,6 @@ private:
         if(it != corner_index.end()) v = corner_vertex[it->second];
         else if(k + 1 == way.size() && cv.closed) v = wv.front();
         else {
-          std::vector<char> al(P.size(), 0);
           for(Index u : outer) al[u] = kind[u] == SURFACE && !used[u];
           v = nearest(pts[way[k]], al);
           if(v != NONE && norm(sub(P[v], pts[way[k]])) > 2 * hloc[v]) v = NONE;
@@ -643,7 +675,10 @@ private:
       std::vector<std::vector<Index>> pieces;
       std::vector<Index> marked;
       for(std::size_t k = 0; k + 1 < wv.size() && ok; ++k) {
-        pieces.push_back(shortest_path(wv[k], wv[k + 1], int(c), used));
+        // a path that never turns inside a face if there is one, else one that turns as little
+        // as it can
+        pieces.push_back(shortest_path(wv[k], wv[k + 1], int(c), used, true));
+        if(pieces.back().empty()) pieces.back() = shortest_path(wv[k], wv[k + 1], int(c), used, false);
         if(pieces.back().empty()) ok = false;
         for(std::size_t i = 1; i + 1 < pieces.back().size(); ++i) { used[pieces.back()[i]] = 1; marked.push_back(pieces.back()[i]); }
       }
@@ -658,14 +693,24 @@ private:
       for(std::size_t k = 0; k < pieces.size(); ++k) {
         const auto& pc = pieces[k];
         const double s0 = arc[way[k]], s1 = (k + 1 == pieces.size() && cv.closed) ? arc.back() : arc[way[k + 1]];
+        // where the path turns inside a top face (two of its edges in a row), the middle vertex is
+        // not snapped: three corners of one face on the curve would flatten it; the curve crosses
+        // that face along its diagonal
+        std::vector<char> skip(pc.size(), 0);
+        for(std::size_t i = 1; i + 1 < pc.size(); ++i)
+          if(!skip[i - 1] && share_top_face(pc[i - 1], pc[i], pc[i + 1])) skip[i] = 1;
         std::vector<double> cum{0};
-        for(std::size_t i = 1; i < pc.size(); ++i) cum.push_back(cum.back() + norm(sub(P[pc[i]], P[pc[i - 1]])));
+        Index last = pc[0];
+        for(std::size_t i = 1; i < pc.size(); ++i) {
+          cum.push_back(cum.back() + (skip[i] ? 0.0 : norm(sub(P[pc[i]], P[last]))));
+          if(!skip[i]) last = pc[i];
+        }
         for(std::size_t i = 0; i < pc.size(); ++i) {
           const Index v = pc[i];
           if(!path.empty() && path.back() == v) continue;
           path.push_back(v);
           used[v] = 1;
-          if(kind[v] != SURFACE) continue;   // corners stay
+          if(kind[v] != SURFACE || skip[i]) continue;   // corners stay
           kind[v] = CURVE;
           curve_of[v] = int(c);
           const double t = cum.back() > 0 ? cum[i] / cum.back() : 0;
@@ -682,6 +727,15 @@ private:
     update_hanging();
   }
 
+  bool share_top_face(Index a, Index b, Index c) const
+  {
+    for(std::size_t f : vertex_top_faces[b]) {
+      const auto& q = m.boundary_faces[top_faces[f]].vertices;
+      if(std::find(q.begin(), q.end(), a) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
+    }
+    return false;
+  }
+
   Vec3 point_at(std::size_t c, const std::vector<double>& arc, double s) const
   {
     const auto& segs = curve_segments[c];
@@ -694,7 +748,7 @@ private:
   }
 
   // Dijkstra on the top-face edges: cost = length x (1 + w (distance of both ends to the curve) / h)
-  std::vector<Index> shortest_path(Index from, Index to, int curve, const std::vector<char>& used)
+  std::vector<Index> shortest_path(Index from, Index to, int curve, const std::vector<char>& used, bool strict)
   {
     if(from == to) return {};
     std::unordered_map<Index, double> dist;
@@ -711,8 +765,14 @@ private:
       q.pop();
       if(dv > dist[v]) continue;
       if(v == to) break;
+      auto pv = pred.find(v);
       for(Index w : snbrs[v]) {
         if(w != to && (used[w] || kind[w] == CORNER || kind[w] == CAP || kind[w] == HANGING)) continue;
+        // two edges of one top face in a row would put three of its corners on the curve (a flat
+        // face): allowed only at a high price
+        const bool turns = pv != pred.end() && share_top_face(pv->second, v, w);
+        if(turns && strict) continue;
+        const double turn = turns ? opt.turn_penalty : 0.0;
         // stay near the curve: at most a few cells away and within the ends' neighbourhood
         const double dw = dcurve(w);
         if(dw > 3 * hloc[w]) continue;
@@ -725,7 +785,7 @@ private:
           for(const Vec3& n : fnormals[w]) if(dot(sub(cp, P[inner_of[w]]), n) <= 0) penalty = 10;
         }
         const double l = norm(sub(P[w], P[v]));
-        const double cost = dv + l * (1 + penalty + opt.snap_weight * (dcurve(v) + dw) / hloc[w]);
+        const double cost = dv + l * (1 + penalty + turn + opt.snap_weight * (dcurve(v) + dw) / hloc[w]);
         auto it = dist.find(w);
         if(it == dist.end() || cost < it->second) { dist[w] = cost; pred[w] = v; q.push({cost, w}); }
       }
@@ -760,7 +820,7 @@ private:
         if(it == first_face.end()) first_face[key] = t;
         else { const Index x = find(t), y = find(it->second); if(x != y) parent[(std::max)(x, y)] = (std::min)(x, y); }
       }
-    std::vector<int> tri_region(tris.size(), -1);
+    tri_region.assign(tris.size(), -1);
     int nreg = 0;
     std::vector<int> root_region(tris.size(), -1);
     for(Index t = 0; t < tris.size(); ++t) {
@@ -828,6 +888,15 @@ private:
         region_trees[r]->accelerate_distance_queries();
       }
     }
+    // a vertex whose region is much farther than the surface (the region was guessed wrong) is
+    // projected onto the whole surface; checked once here, not at every move
+    for(Index v = 0; v < P.size(); ++v) {
+      if(kind[v] != SURFACE || vregion[v] < 0) continue;
+      const Vec3 r = closest_on_surface(P[v], vregion[v], hloc[v]);
+      const Vec3 g = vec(d.closest_point(Point_3(P[v][0], P[v][1], P[v][2])));
+      if(norm(sub(r, P[v])) > norm(sub(g, P[v])) + 0.5 * hloc[v]) vregion[v] = -1;
+    }
+    check_region = false;
   }
 
   // -----------------------------------------------------------------------------------------------
@@ -868,6 +937,23 @@ private:
     return mul(s, 1.0 / double(L.size()));
   }
 
+  // an inner vertex's ideal place: its twin minus `buffer_thickness` x local size along the mean
+  // normal of the top faces around the twin
+  Vec3 inner_target(Index v) const
+  {
+    const Index t = twin[v];
+    Vec3 n{{0, 0, 0}};
+    for(std::size_t f : vertex_top_faces[t]) {
+      const auto& q = m.boundary_faces[top_faces[f]].vertices;
+      const Vec3 a = cross(sub(P[q[2]], P[q[0]]), sub(P[q[3]], P[q[1]]));
+      const double l = norm(a);
+      if(l > 0) n = add(n, mul(a, 1.0 / l));
+    }
+    const double l = norm(n);
+    if(!(l > 0)) return P[v];
+    return sub(P[t], mul(n, opt.buffer_thickness * hloc[v] / l));
+  }
+
   // returns true if the vertex moved
   bool improve(Index v, std::vector<Index>& cells)
   {
@@ -896,67 +982,107 @@ private:
     const Vec3 s = smoothing_target(v);
     trial(s);
     trial(mul(add(s, x0), 0.5));
+    if(v < twin.size() && twin[v] != NONE) {
+      // an inner buffer vertex: its place is under its twin, a buffer thickness along the normal
+      // of the buffer's outer surface (the buffer cells then stand square on the surface)
+      const Vec3 ideal = inner_target(v);
+      trial(ideal);
+      trial(mul(add(ideal, x0), 0.5));
+    }
     if(kind[v] == SURFACE || kind[v] == CURVE) trial(x0);   // back onto the surface/curve
-    // numerical gradient of the minimum quality
+    // numerical gradient of the minimum quality (for vertices of cells below the target)
     const double eps = 1e-4 * h;
     Vec3 g{{0, 0, 0}};
-    for(int a = 0; a < 3; ++a) {
+    for(int a = 0; a < 3 && f0 < opt.target_quality; ++a) {
       Vec3 y = x0; y[a] += eps;
       move(v, y);
       g[a] = (quality_of(cells) - f0) / eps;
     }
     const double gn = norm(g);
-    if(gn > 0)
+    if(gn > 0 && f0 < opt.target_quality)
       for(double alpha : {0.3, 0.1, 0.03, 0.01}) trial(add(x0, mul(g, alpha * h / gn)));
-    move(v, fb > f0 ? best : x0);
-    return fb > f0;
+    // a move must gain something measurable (else sweeps never end on round-off)
+    const bool gain = fb > f0 + 1e-4;
+    move(v, gain ? best : x0);
+    return gain;
   }
 
   template <typename Visitor>
   bool optimise(Visitor& visitor)
   {
-    std::vector<Index> cells, work;
-    std::vector<char> in_work(P.size(), 0);
-    double qmin = 1;
-    for(int pass = 0; pass < opt.passes; ++pass) {
-      work.clear();
-      qmin = 1;
-      for(Index c = 0; c < m.hexahedra.size(); ++c) {
-        const double q = cell_quality(c);
-        qmin = (std::min)(qmin, q);
-        if(q >= opt.target_quality) continue;
-        for(Index v : m.hexahedra[c]) {
-          if(kind[v] == HANGING) {
-            for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
-          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
-        }
-      }
-      rep.optimisation_passes = std::size_t(pass);
-      if(work.empty()) break;
+    // Only cells below the target are worked on, and only cells around a moved vertex can change:
+    // `low` (the cells below the target) is kept up to date from the cells each move touched,
+    // so a sweep costs what the boundary region costs, not the whole mesh.
+    std::vector<Index> cells, work, low, touched;
+    std::vector<char> in_work(P.size(), 0), mark(m.hexahedra.size(), 0);
+    for(Index c = 0; c < m.hexahedra.size(); ++c) if(cell_quality(c) < opt.target_quality) low.push_back(c);
+    auto add_vertex = [&](Index v) {
+      if(kind[v] == HANGING) {
+        for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
+      } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
+    };
+    // improves the vertices in `work`; returns the number moved and refreshes `low`
+    auto sweep = [&]() {
       std::sort(work.begin(), work.end());
       std::size_t moved = 0;
-      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
+      touched.clear();
+      for(Index v : work) {
+        in_work[v] = 0;
+        if(!improve(v, cells)) continue;
+        ++moved;
+        for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
+      }
+      work.clear();
+      for(Index c : low) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
+      low.clear();
+      std::sort(touched.begin(), touched.end());
+      for(Index c : touched) { mark[c] = 0; if(cell_quality(c) < opt.target_quality) low.push_back(c); }
+      return moved;
+    };
+    for(int pass = 0; pass < opt.passes; ++pass) {
+      for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
+      if(pass < 3)   // the first sweeps set every inner buffer vertex under its twin
+        for(Index v : inner) add_vertex(v);
+      rep.optimisation_passes = std::size_t(pass + 1);
+      if(work.empty()) break;
+      const std::size_t nwork = work.size();
+      const std::size_t moved = sweep();
       if(!visitor.go_further(double(pass + 1) / opt.passes)) return false;
-      if(moved == 0) break;
+      if(moved * 200 < nwork) break;   // fewer than 0.5 % of the vertices still move
     }
-    // cells still inverted: release their surface vertices into the volume and try again
+    auto untangle = [&]() {
+      for(int pass = 0; pass < opt.passes; ++pass) {
+        for(Index c : low) if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) add_vertex(v);
+        if(work.empty() || sweep() == 0) break;
+      }
+      work.clear();
+    };
+    // cells still inverted: first their curve and corner vertices go back to being surface
+    // vertices (a feature is lost there rather than the surface), then their surface vertices
+    // are released into the volume
+    bool unsnapped = false;
+    for(Index c : low)
+      if(cell_quality(c) <= 0)
+        for(Index v : m.hexahedra[c])
+          if(kind[v] == CURVE || kind[v] == CORNER) {
+            kind[v] = SURFACE;
+            unsnapped = true;
+            ++rep.unsnapped_vertices;
+            if(vregion[v] < 0) vregion[v] = region_of_point(P[v]);
+          }
+    if(unsnapped) untangle();
     bool released = false;
-    for(Index c = 0; c < m.hexahedra.size(); ++c)
+    for(Index c : low)
       if(cell_quality(c) <= 0)
         for(Index v : m.hexahedra[c])
           if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) { kind[v] = RELEASED; released = true; rep.unreached.push_back(P[v]); }
-    if(released)
-      for(int pass = 0; pass < opt.passes; ++pass) {
-        std::size_t moved = 0;
-        for(Index c = 0; c < m.hexahedra.size(); ++c)
-          if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) if(movable(v) && improve(v, cells)) ++moved;
-        if(moved == 0) break;
-      }
-    qmin = 1;
+    if(released) untangle();
+    double qmin = 1;
     for(Index c = 0; c < m.hexahedra.size(); ++c) qmin = (std::min)(qmin, cell_quality(c));
     rep.min_scaled_jacobian = qmin;
     return true;
   }
+
 
   // The last resort: a buffer cell the optimisation could not make valid is removed; the staircase
   // face under it and the side faces of its buffer neighbours become boundary faces (of the top
@@ -1096,6 +1222,7 @@ private:
   std::vector<Index> twin, inner, inner_of;
   std::vector<std::size_t> top_faces;
   std::vector<Index> buffer_owner;   // the staircase cell under each buffer cell
+  std::vector<std::vector<std::size_t>> vertex_top_faces;   // top faces (indices into top_faces) at each twin
   std::vector<Kind> kind;
   std::vector<std::uint8_t> planes;
   std::vector<Index> hang_of;
@@ -1110,7 +1237,8 @@ private:
   std::unordered_set<std::uint64_t> feature_edges;
   std::vector<std::vector<Triangle_3>> region_triangles;
   std::vector<std::unique_ptr<Tree>> region_trees;
-  std::vector<int> face_region, vregion;
+  std::vector<int> face_region, vregion, tri_region;
+  bool check_region = true;
 };
 
 } // namespace internal
