@@ -63,15 +63,21 @@ def default_suite():
 def checkmesh(case):
     env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
     try:
+        std = subprocess.run(["checkMesh", "-case", case, "-allTopology"], capture_output=True, text=True, env=env)
         r = subprocess.run(["checkMesh", "-case", case, "-allTopology", "-allGeometry"], capture_output=True,
                            text=True, env=env)
     except FileNotFoundError:
         return {"verdict": "checkMesh not installed"}
+    so = std.stdout + std.stderr
+    sfailed = re.search(r"Failed (\d+) mesh checks", so)
+    standard = {"verdict": "Mesh OK" if "Mesh OK" in so else (f"Failed {sfailed.group(1)} mesh checks" if sfailed else "no verdict"),
+                "flags": [l.strip().lstrip("*") for l in so.splitlines() if l.strip().startswith("***")]}
     out = r.stdout + r.stderr
     failed = re.search(r"Failed (\d+) mesh checks", out)
     flags = [l.strip().lstrip("*") for l in out.splitlines() if l.strip().startswith("***")]
     get = lambda pat: (float(m.group(1)) if (m := re.search(pat, out)) else None)
-    return {"verdict": "Mesh OK" if "Mesh OK" in out else (f"Failed {failed.group(1)} mesh checks" if failed else "no verdict"),
+    return {"allTopology": standard,
+            "verdict": "Mesh OK" if "Mesh OK" in out else (f"Failed {failed.group(1)} mesh checks" if failed else "no verdict"),
             "flags": flags, "max_non_orthogonality": get(r"Mesh non-orthogonality Max: ([0-9.eE+-]+)"),
             "max_skewness": get(r"Max skewness = ([0-9.eE+-]+)")}
 
@@ -126,6 +132,16 @@ def main():
                     "repair": {k: v for k, v in j["repair"].items() if v},
                     "leaks": [{"cells": l["cells"], "volume": round(l["volume"], 6), "passage": l["passage"]} for l in j["leaks"]],
                 })
+                if "boundary" in j:
+                    line["boundary"] = {k: v for k, v in j["boundary"].items() if k != "unreached_first_100"}
+                if "fidelity" in j:
+                    f = j["fidelity"]
+                    s_ = f["surface_size"]
+                    line["fidelity_in_surface_sizes"] = {k: round(f[k] / s_, 3) for k in
+                                                         ("mesh_to_input_max", "mesh_to_input_mean", "input_to_mesh_max", "input_to_mesh_mean")}
+                if "topology" in j:
+                    t = j["topology"]
+                    line["topology"] = {w: (t[w]["components"], t[w]["euler_characteristic"]) for w in ("input", "mesh_boundary")}
                 if args.checkmesh:
                     line["checkMesh"] = checkmesh(os.path.join(out, "case"))
             print(json.dumps(line), flush=True)

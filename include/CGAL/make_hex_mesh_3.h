@@ -30,8 +30,24 @@ namespace CGAL {
  * Steps: an initial Cartesian grid over the meshing box (n_a = ceil(L_a / size) cells per axis,
  * so the box is honoured exactly); refinement of the cells the criteria call bad, level by level;
  * 2:1 balance across every face and edge; classification of the cells not cut by the surface;
- * extraction of the kept cells with their hanging nodes and boundary faces. The boundary is a
- * staircase of grid faces in this version.
+ * extraction of the kept cells with their hanging nodes and boundary faces; then, unless
+ * `body_fitted(false)` is given, the boundary is fitted to the surface (HEXPRESS-style):
+ * - refinement splits, with every cut cell, the cells of its level around it (so the staircase
+ *   next to the surface has the surface size); the staircase keeps its surface vertices at least
+ *   0.4 x their cell size away from the surface and is made manifold (cells removed, then trimmed);
+ * - a buffer layer of hexahedra joins each staircase face on the surface to its image on the
+ *   surface (closest point, or the point along the staircase normal where the closest point lies
+ *   behind a staircase face; kept in the box planes it touches); a hanging midpoint of a staircase
+ *   face's edge has a hanging image, so coarse and fine buffer cells meet 1:2;
+ * - feature curves (named parameter `feature_curves`) are followed by chains of mesh edges
+ *   (shortest paths on the buffer's outer surface) snapped onto them, corners onto corners; the
+ *   outer faces between chains are projected onto the input faces between the same curves;
+ * - the vertices near the boundary are moved to raise the minimum scaled Jacobian (and face
+ *   pyramid quality) of their cells, never making a valid cell invalid; curve vertices of cells
+ *   still inverted return to the surface, then surface vertices are released into the volume
+ *   (reported in the statistics as unreached), and buffer cells still below 0.02 are removed
+ *   (their staircase face is the boundary there). Every cell of the result has a positive
+ *   scaled Jacobian.
  *
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)
@@ -72,6 +88,16 @@ namespace CGAL {
  *       leaf cells (balance may add a few more); the status is then `CELL_LIMIT_REACHED`}
  *     \cgalParamType{`std::size_t`}
  *     \cgalParamDefault{unlimited}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{body_fitted}
+ *     \cgalParamDescription{`false` keeps the staircase of grid faces as the boundary}
+ *     \cgalParamType{`bool`}
+ *     \cgalParamDefault{`true`}
+ *   \cgalParamNEnd
+ *   \cgalParamNBegin{feature_curves}
+ *     \cgalParamDescription{the curves and corners the boundary must follow}
+ *     \cgalParamType{`const Hex_meshing_3::Feature_curves_3<Geom_traits>*`}
+ *     \cgalParamDefault{`Feature_curves_3` of the domain with its default options (30 degrees)}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{progress and cancellation hooks (model of `HexMeshingVisitor`)}
@@ -142,6 +168,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     stats.optimisation_passes = r.optimisation_passes;
     stats.unreached_vertices = r.unreached;
     stats.removed_buffer_cells = r.removed_buffer_cells;
+    stats.unsnapped_vertices = r.unsnapped_vertices;
+    stats.skewed_faces = r.skewed_faces;
     stats.kept_cells = out.number_of_cells();
   }
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::leaks_t>::value) {

@@ -585,7 +585,8 @@ int main(int argc, char** argv)
           for(std::size_t i = 0; i < stats.unreached_vertices.size() && i < 100; ++i)
             un.push_back({stats.unreached_vertices[i][0], stats.unreached_vertices[i][1], stats.unreached_vertices[i][2]});
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
-                           {"removed_buffer_cells", stats.removed_buffer_cells}, {"surface_vertices", stats.surface_vertices},
+                           {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces},
+                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"optimisation_passes", stats.optimisation_passes},

@@ -9,7 +9,8 @@ inside test, and surface parts (patches) that name the boundary faces of the mes
 The mesher distributes the triangles to the cells of the grid with `do_intersect()` (a cell is
 *cut* when it meets a triangle), decides which uncut cells lie inside with `is_inside()` when
 `has_exact_inside_test()` is `true` and with `winding_number()` otherwise, and names each boundary
-face after the part of the triangle closest to it (`closest_triangle()`, `patch()`).
+face after the part of the triangle closest to it (`closest_triangle()`, `patch()`). The
+body-fitted boundary projects onto the surface with the queries of the last group.
 
 \cgalHasModelsBegin
 \cgalHasModels{`CGAL::Hex_meshing_3::Surface_domain_3<GeomTraits>`}
@@ -85,6 +86,28 @@ public:
 
   /// does the closed box `b` meet one of `feature_segments()`? Must be exact.
   bool do_intersect_feature_lines(const CGAL::Bbox_3& b) const;
+
+  /// @}
+
+  /// \name Body-fitted boundary
+  /// What the buffer layer, the projection and the feature snapping ask (named parameter
+  /// `body_fitted`, on by default).
+  /// @{
+
+  /// the point of the surface closest to `p`
+  Point_3 closest_point(const Point_3& p) const;
+
+  /// the squared distance from `p` to the surface
+  Geom_traits::FT squared_distance(const Point_3& p) const;
+
+  /// the first point where the ray from `p` along `d` meets the surface; `false` if none
+  bool first_ray_hit(const Point_3& p, const Geom_traits::Vector_3& d, Point_3& hit) const;
+
+  /// triangle `i`, its corner indices into `points()`, and the points: the surface regions
+  /// between feature curves are built from them
+  const Geom_traits::Triangle_3& triangle(std::size_t i) const;
+  const std::vector<std::array<std::uint32_t, 3>>& triangle_indices() const;
+  const std::vector<Point_3>& points() const;
 
   /// @}
 };

@@ -122,7 +122,8 @@ struct Meshing_statistics
   std::size_t curves_missed = 0;            ///< feature curves no chain was found for
   std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
   std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
-  double capture_seconds = 0;               ///< time of the boundary capture
+  std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface to untangle cells
+  std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
 };

@@ -226,6 +226,7 @@ struct Boundary_capture_report
   std::size_t optimisation_passes = 0;
   std::size_t removed_buffer_cells = 0;   ///< buffer cells that could not be made valid (removed)
   std::size_t unsnapped_vertices = 0;     ///< curve/corner vertices returned to the surface to untangle
+  std::size_t skewed_faces = 0;           ///< faces found skewed beyond `max_skewness` (their buffer cells removed)
   double min_scaled_jacobian = 0;
 };
 
@@ -251,6 +252,7 @@ public:
     double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
     double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
     double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
+    double max_skewness = 3.5;         ///< buffer cells at a face more skewed than this are removed (OpenFOAM fails > 4)
   };
 
   Boundary_capture_3(HexMesh& mesh, const Domain& domain, const FeatureCurves* features, const Options& o = Options())
@@ -275,9 +277,26 @@ public:
     update_hanging();
     if(!optimise(visitor)) return false;
     assign_patches();
-    remove_invalid_buffer_cells();
+    remove_invalid_buffer_cells({});
     m.points.resize(P.size());
     for(std::size_t v = 0; v < P.size(); ++v) m.points[v] = Point_3(P[v][0], P[v][1], P[v][2]);
+    // OpenFOAM rejects faces skewed beyond 4: the buffer cells at such a face go too (a few
+    // rounds: a removal changes the faces around it)
+    for(int round = 0; round < 8; ++round) {
+      Polyhedral_mesh_3 pm;
+      pm.build(m);
+      const Mesh_quality q = compute_quality(m, pm);
+      const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
+      std::vector<Index> extra;
+      for(std::size_t f = 0; f < pm.faces.size(); ++f) {
+        if(!(q.skewness[f] > opt.max_skewness)) continue;
+        ++rep.skewed_faces;
+        if(pm.owner[f] >= first) extra.push_back(pm.owner[f]);
+        if(f < pm.neighbour.size() && pm.neighbour[f] >= first) extra.push_back(pm.neighbour[f]);
+      }
+      if(extra.empty()) break;
+      remove_invalid_buffer_cells(extra);
+    }
     if(rep.removed_buffer_cells > 0) drop_unused_vertices();
     return true;
   }
@@ -1088,13 +1107,14 @@ private:
   // face under it and the side faces of its buffer neighbours become boundary faces (of the top
   // face's patch). Interior cells cannot be invalid: they start valid and no move makes a valid
   // cell invalid.
-  void remove_invalid_buffer_cells()
+  void remove_invalid_buffer_cells(const std::vector<Index>& also)
   {
     const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
     std::vector<char> gone(m.hexahedra.size(), 0);
     std::size_t n = 0;
     for(std::size_t c = first; c < m.hexahedra.size(); ++c)
       if(!(cell_quality(Index(c)) > opt.min_valid_quality)) { gone[c] = 1; ++n; }
+    for(Index c : also) if(c >= first && !gone[c]) { gone[c] = 1; ++n; }
     if(n == 0) return;
     // side faces of the buffer cells, by their bottom edge
     std::unordered_map<std::uint64_t, std::vector<std::pair<Index, int>>> by_edge;
@@ -1123,7 +1143,7 @@ private:
         }
       }
     }
-    rep.removed_buffer_cells = n;
+    rep.removed_buffer_cells += n;
     std::vector<int> top_patch(m.hexahedra.size(), 6);
     std::vector<typename HexMesh::Boundary_face> faces;
     for(const auto& f : m.boundary_faces) {
@@ -1166,6 +1186,9 @@ private:
       if(!gone[c]) { new_index[c] = Index(k); m.hexahedra[k] = m.hexahedra[c]; m.cell_levels[k] = m.cell_levels[c]; ++k; }
     m.hexahedra.resize(k);
     m.cell_levels.resize(k);
+    std::vector<Index> owners;
+    for(std::size_t c = first; c < gone.size(); ++c) if(!gone[c]) owners.push_back(buffer_owner[c - first]);
+    buffer_owner.swap(owners);
     for(auto& f : faces) f.cell = new_index[f.cell];
     m.boundary_faces.swap(faces);
     rep.buffer_cells -= n;
