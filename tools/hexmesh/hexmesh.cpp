@@ -548,7 +548,7 @@ int main(int argc, char** argv)
         const auto tf = std::chrono::steady_clock::now();
         const HM::Boundary_fidelity fid = HM::boundary_fidelity(mesh, domain, 10000);
         auto loc = [](const std::array<double, 3>& p) { return nlohmann::ordered_json{p[0], p[1], p[2]}; };
-        j["fidelity"] = {{"surface_faces", fid.surface_faces}, {"mesh_to_input_max", fid.max_face_distance},
+        j["fidelity"] = {{"surface_faces", fid.surface_faces}, {"cap_faces", fid.cap_faces}, {"cap_area", fid.cap_area}, {"mesh_to_input_max", fid.max_face_distance},
                          {"mesh_to_input_mean", fid.mean_face_distance}, {"mesh_to_input_worst_at", loc(fid.worst_face_location)},
                          {"samples", fid.samples}, {"input_to_mesh_max", fid.max_sample_distance},
                          {"input_to_mesh_mean", fid.mean_sample_distance}, {"input_to_mesh_worst_at", loc(fid.worst_sample_location)},

@@ -30,6 +30,7 @@
 #include <limits>
 #include <unordered_map>
 #include <utility>
+#include <memory>
 #include <vector>
 
 namespace CGAL {
@@ -49,6 +50,8 @@ struct Boundary_fidelity
   double mean_sample_distance = 0;
   std::array<double, 3> worst_face_location = {{0, 0, 0}};     ///< where the mesh is farthest
   std::array<double, 3> worst_sample_location = {{0, 0, 0}};   ///< where the input is farthest
+  std::size_t cap_faces = 0;         ///< faces capping holes of the input (not counted in the face distances)
+  double cap_area = 0;               ///< their area
 };
 
 /*!
@@ -65,19 +68,54 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   typedef typename Domain::Geom_traits GT;
   typedef typename GT::Point_3 Point_3;
   typedef typename GT::Triangle_3 Triangle_3;
+  typedef typename GT::Segment_3 Segment_3;
   Boundary_fidelity r;
+  // the border edges of the input (one triangle): a face whose centre is nearest to one of them
+  // caps a hole, and is counted apart
+  std::vector<Segment_3> border;
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for(const auto& t : domain.triangle_indices())
+      for(int k = 0; k < 3; ++k) {
+        std::uint32_t u = t[std::size_t(k)], v = t[std::size_t((k + 1) % 3)];
+        if(u > v) std::swap(u, v);
+        edges.push_back({u, v});
+      }
+    std::sort(edges.begin(), edges.end());
+    for(std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while(j < edges.size() && edges[j] == edges[i]) ++j;
+      if(j - i == 1) border.emplace_back(domain.points()[edges[i].first], domain.points()[edges[i].second]);
+      i = j;
+    }
+  }
+  typedef typename std::vector<Segment_3>::const_iterator Seg_it;
+  typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Segment_tree;
+  std::unique_ptr<Segment_tree> border_tree;
+  if(!border.empty()) {
+    border_tree = std::make_unique<Segment_tree>(border.begin(), border.end());
+    border_tree->accelerate_distance_queries();
+  }
+  const Bbox_3 bb = domain.bbox();
+  const double tiny = 1e-9 * std::sqrt(CGAL::square(bb.xmax() - bb.xmin()) + CGAL::square(bb.ymax() - bb.ymin()) +
+                                       CGAL::square(bb.zmax() - bb.zmin()));
   // mesh -> input
   double sum = 0;
   std::vector<Triangle_3> boundary;
   for(const auto& f : mesh.boundary_faces) {
     if(f.patch < 6) continue;
-    ++r.surface_faces;
     const Point_3 &a = mesh.points[f.vertices[0]], &b = mesh.points[f.vertices[1]], &c = mesh.points[f.vertices[2]],
                   &d = mesh.points[f.vertices[3]];
     boundary.emplace_back(a, b, c);
     boundary.emplace_back(a, c, d);
     const Point_3 centre((a.x() + b.x() + c.x() + d.x()) / 4, (a.y() + b.y() + c.y() + d.y()) / 4,
                          (a.z() + b.z() + c.z() + d.z()) / 4);
+    if(border_tree && CGAL::to_double(border_tree->squared_distance(domain.closest_point(centre))) <= tiny * tiny) {
+      ++r.cap_faces;
+      r.cap_area += 0.5 * std::sqrt(CGAL::to_double(CGAL::cross_product(c - a, d - b).squared_length()));
+      continue;
+    }
+    ++r.surface_faces;
     double worst = 0;
     const Point_3* pts[5] = {&a, &b, &c, &d, &centre};
     for(const Point_3* p : pts) {
