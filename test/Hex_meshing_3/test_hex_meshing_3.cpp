@@ -1228,6 +1228,37 @@ void test_body_fitted()
   }
 }
 
+// a user feature line on a face of the cube, oblique to the grid: followed by a chain of mesh
+// edges, its ends are mesh vertices
+void test_body_fitted_user_line()
+{
+  std::cout << "body-fitted boundary with a user feature line\n";
+  Domain d("data/cube.off");
+  HM::Feature_curves_3<K> f(d);
+  const Point_3 a(-0.5, -0.7, 1), b(0.55, 0.6, 1);
+  d.add_feature_polylines({{a, Point_3(0, -0.05, 1), b}});
+  Mesh m;
+  HM::Meshing_statistics st;
+  CGAL::make_hex_mesh_3(d, Criteria(0.25, 0.0625), m, HP::statistics(&st).feature_curves(&f));
+  std::cout << "  " << st.curves_captured << " curves captured, " << st.corner_vertices << " corners, "
+            << st.curve_vertices << " curve vertices, " << st.curves_missed << " missed\n";
+  assert(st.curves_captured == 13 && st.corner_vertices == 10 && st.curves_missed == 0);
+  double da = 1e300, db = 1e300;
+  for(const Point_3& p : m.points) {
+    da = (std::min)(da, CGAL::to_double(CGAL::squared_distance(p, a)));
+    db = (std::min)(db, CGAL::to_double(CGAL::squared_distance(p, b)));
+  }
+  assert(da < 1e-20 && db < 1e-20);
+  double qmin = 1;
+  for(const auto& h : m.hexahedra) {
+    std::array<Point_3, 8> p;
+    for(int k = 0; k < 8; ++k) p[k] = m.points[h[k]];
+    qmin = (std::min)(qmin, HM::scaled_jacobian(p));
+  }
+  std::cout << "  ends are mesh vertices; min scaled Jacobian " << qmin << "\n";
+  assert(qmin > 0);
+}
+
 int main(int argc, char** argv)
 {
   std::cout << std::unitbuf;   // keep the log in order with assertion messages
@@ -1244,6 +1275,7 @@ int main(int argc, char** argv)
   test_feature_fidelity();
   test_polyhedral_half_splits();
   test_body_fitted();
+  test_body_fitted_user_line();
   std::cout << "all checks passed\n";
   return EXIT_SUCCESS;
 }

@@ -222,6 +222,7 @@ struct Boundary_capture_report
   std::size_t corner_vertices = 0;       ///< of which snapped onto corners
   std::size_t cap_vertices = 0;          ///< twins over holes (closest point on an open edge), not projected
   std::size_t curves_captured = 0, curves_missed = 0, curves_skipped = 0;
+  std::size_t user_lines = 0;            ///< user feature lines among the curves
   std::vector<std::array<double, 3>> unreached;   ///< surface vertices released to keep cells valid
   std::size_t optimisation_passes = 0;
   std::size_t removed_buffer_cells = 0;   ///< buffer cells that could not be made valid (removed)
@@ -565,21 +566,53 @@ private:
 
   // -----------------------------------------------------------------------------------------------
   // 3. features
+  // the curves to follow: the feature curves, and the user's feature lines (the domain's feature
+  // segments, chained into polylines); their ends are corners
+  struct Snap_curve { std::vector<Vec3> pts; bool closed = false; int c0 = -1, c1 = -1; };
+
   void snap_features()
   {
-    const auto& curves = fc->curves();
+    std::vector<Snap_curve> curves;
+    std::vector<Vec3> corner_pts;
+    std::map<std::array<double, 3>, int> corner_id;
+    auto corner_of = [&](const Vec3& p) {
+      auto it = corner_id.find(p);
+      if(it != corner_id.end()) return it->second;
+      corner_id[p] = int(corner_pts.size());
+      corner_pts.push_back(p);
+      return int(corner_pts.size()) - 1;
+    };
+    for(Index k : fc->corners()) corner_of(vec(fc->point(k)));
+    for(const auto& cv : fc->curves()) {
+      Snap_curve sc;
+      for(Index i : cv.vertices) sc.pts.push_back(vec(fc->point(i)));
+      sc.closed = cv.closed;
+      if(!sc.closed) { sc.c0 = corner_of(sc.pts.front()); sc.c1 = corner_of(sc.pts.back()); }
+      curves.push_back(std::move(sc));
+    }
+    const auto& segs = d.feature_segments();
+    for(std::size_t i = 0; i < segs.size();) {
+      Snap_curve sc;
+      sc.pts.push_back(vec(segs[i].source()));
+      std::size_t j = i;
+      while(j < segs.size() && (j == i || segs[j].source() == segs[j - 1].target())) { sc.pts.push_back(vec(segs[j].target())); ++j; }
+      if(sc.pts.size() > 3 && sc.pts.front() == sc.pts.back()) { sc.pts.pop_back(); sc.closed = true; }
+      else { sc.c0 = corner_of(sc.pts.front()); sc.c1 = corner_of(sc.pts.back()); }
+      curves.push_back(std::move(sc));
+      ++rep.user_lines;
+      i = j;
+    }
     curve_trees.clear();
     curve_of.assign(P.size(), -1);
     cnbrs.assign(P.size(), {});
     curve_segments.assign(curves.size(), {});
     for(std::size_t c = 0; c < curves.size(); ++c) {
       const auto& cv = curves[c];
-      auto& segs = curve_segments[c];
-      for(std::size_t i = 0; i + 1 < cv.vertices.size(); ++i)
-        segs.emplace_back(fc->point(cv.vertices[i]), fc->point(cv.vertices[i + 1]));
-      if(cv.closed && cv.vertices.size() > 2) segs.emplace_back(fc->point(cv.vertices.back()), fc->point(cv.vertices.front()));
-      curve_trees.push_back(std::make_unique<Segment_tree>(segs.begin(), segs.end()));
-      curve_trees.back()->accelerate_distance_queries();
+      auto& sg = curve_segments[c];
+      for(std::size_t i = 0; i + 1 < cv.pts.size(); ++i) sg.emplace_back(Point_3(cv.pts[i][0], cv.pts[i][1], cv.pts[i][2]), Point_3(cv.pts[i + 1][0], cv.pts[i + 1][1], cv.pts[i + 1][2]));
+      if(cv.closed && cv.pts.size() > 2) sg.emplace_back(Point_3(cv.pts.back()[0], cv.pts.back()[1], cv.pts.back()[2]), Point_3(cv.pts[0][0], cv.pts[0][1], cv.pts[0][2]));
+      curve_trees.push_back(sg.empty() ? nullptr : std::make_unique<Segment_tree>(sg.begin(), sg.end()));
+      if(curve_trees.back()) curve_trees.back()->accelerate_distance_queries();
     }
     // outer-surface vertices that may carry a feature: surface twins (not hanging, not caps)
     std::vector<Index> outer;
@@ -620,24 +653,20 @@ private:
     for(Index v : outer) allowed[v] = 1;
     // curves shorter than two cells are not followed (on a coarse organic mesh, a 30 degree
     // angle finds many tiny ones); the corners are those of the curves followed
-    std::vector<char> follow(curves.size(), 0);
-    std::unordered_set<Index> wanted_corners;
+    std::vector<char> follow(curves.size(), 0), wanted_corners(corner_pts.size(), 0);
     for(std::size_t c = 0; c < curves.size(); ++c) {
       double len = 0;
       for(const auto& sg : curve_segments[c]) len += std::sqrt(CGAL::to_double(sg.squared_length()));
-      const Vec3 p0 = vec(fc->point(curves[c].vertices.front()));
-      const Index v0 = nearest(p0, allowed);
+      const Index v0 = nearest(curves[c].pts.front(), allowed);
       if(v0 == NONE || len < 2 * hloc[v0]) { ++rep.curves_skipped; continue; }
       follow[c] = 1;
-      if(!curves[c].closed) { wanted_corners.insert(curves[c].vertices.front()); wanted_corners.insert(curves[c].vertices.back()); }
+      if(!curves[c].closed) { wanted_corners[std::size_t(curves[c].c0)] = 1; wanted_corners[std::size_t(curves[c].c1)] = 1; }
     }
     // corners first: the nearest twin whose inner vertex sees the corner in front of its faces
-    std::vector<Index> corner_vertex(fc->corners().size(), NONE);
-    std::unordered_map<Index, Index> corner_index;
-    for(std::size_t k = 0; k < fc->corners().size(); ++k) corner_index[fc->corners()[k]] = Index(k);
-    for(std::size_t k = 0; k < fc->corners().size(); ++k) {
-      if(!wanted_corners.count(fc->corners()[k])) continue;
-      const Vec3 c = vec(fc->point(fc->corners()[k]));
+    std::vector<Index> corner_vertex(corner_pts.size(), NONE);
+    for(std::size_t k = 0; k < corner_pts.size(); ++k) {
+      if(!wanted_corners[k]) continue;
+      const Vec3 c = corner_pts[k];
       Index v = NONE;
       double bd = std::numeric_limits<double>::max();
       for_near(c, [&](Index u) {
@@ -664,8 +693,7 @@ private:
     for(std::size_t c = 0; c < curves.size(); ++c) {
       if(!follow[c]) continue;
       const auto& cv = curves[c];
-      std::vector<Vec3> pts;
-      for(Index i : cv.vertices) pts.push_back(vec(fc->point(i)));
+      const std::vector<Vec3>& pts = cv.pts;
       // waypoints: the ends (corners), plus, for closed curves, three points around the loop
       std::vector<std::size_t> way;
       if(cv.closed) { const std::size_t n = pts.size(); way = {0, n / 3, 2 * n / 3, 0}; }
@@ -674,9 +702,8 @@ private:
       bool ok = true;
       for(std::size_t k = 0; k < way.size(); ++k) {
         Index v = NONE;
-        auto it = corner_index.find(cv.vertices[way[k]]);
-        if(it != corner_index.end()) v = corner_vertex[it->second];
-        else if(k + 1 == way.size() && cv.closed) v = wv.front();
+        if(!cv.closed) v = corner_vertex[std::size_t(k == 0 ? cv.c0 : cv.c1)];
+        else if(k + 1 == way.size()) v = wv.front();
         else {
           for(Index u : outer) al[u] = kind[u] == SURFACE && !used[u];
           v = nearest(pts[way[k]], al);
