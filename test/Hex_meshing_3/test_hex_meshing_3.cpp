@@ -1257,6 +1257,26 @@ void test_body_fitted_user_line()
   }
   std::cout << "  ends are mesh vertices; min scaled Jacobian " << qmin << "\n";
   assert(qmin > 0);
+
+  // cancelled during the capture: the sweeps stop, the mesh is still valid
+  struct Capture_stopper
+  {
+    std::string phase;
+    int polls_in_capture = 0;
+    void on_phase_begin(const char* n, std::size_t) { phase = n; }
+    void on_phase_end(const char*) {}
+    bool go_further(double) { if(phase != "capture") return true; ++polls_in_capture; return false; }
+  } stop;
+  Domain e("data/eight.off");
+  Mesh mc;
+  const HM::Status s = CGAL::make_hex_mesh_3(e, Criteria(0.25, 0.0625), mc, HP::body_fitted(true).visitor(std::ref(stop)));
+  assert(s == HM::Status::CANCELED && stop.polls_in_capture == 1 && mc.number_of_cells() > 0);
+  HM::Polyhedral_mesh_3 pm;
+  pm.build(mc);
+  const HM::Mesh_quality q = HM::compute_quality(mc, pm);
+  std::cout << "  cancelled in the capture: " << mc.number_of_cells() << " cells, min scaled Jacobian "
+            << HM::Mesh_quality::range(q.scaled_jacobian).min << "\n";
+  assert(q.number_of_inverted_cells() == 0);
 }
 
 int main(int argc, char** argv)

@@ -6,11 +6,15 @@ The concept `HexMeshingVisitor` describes the progress and cancellation hooks of
 `CGAL::make_hex_mesh_3()`, passed with the named parameter `visitor` (as
 `CGAL::parameters::visitor(std::ref(v))` to keep the visitor's state).
 
-The mesher runs four phases, in order: `"refine"`, `"balance"`, `"classify"` and `"extract"`.
+The mesher runs these phases, in order: `"refine"`, `"balance"`, `"classify"`, `"prepare"` (room
+for the buffer layer), `"extract"` and `"capture"` (buffer layer, projection, feature snapping,
+optimisation); the body-fitted ones only with `body_fitted(true)`, the default.
 It polls `go_further()` during refinement once per batch of cells (never once per cell) and after
-each level. When `go_further()` returns `false`, refinement stops at the next safe point; the
-mesher still balances, classifies and extracts, so the mesh it returns is valid, only coarser,
-and the status is `CGAL::Hex_meshing_3::Status::CANCELED`.
+each level, and after each optimisation sweep of the capture. When `go_further()` returns
+`false` during refinement, refinement stops at the next safe point; the mesher still balances,
+classifies and extracts (the boundary is then the staircase), so the mesh it returns is valid,
+only coarser. During the capture, the optimisation sweeps stop, and the steps that make every
+cell valid still run. The status is `CGAL::Hex_meshing_3::Status::CANCELED` in both cases.
 
 The hooks are called from the thread that called `CGAL::make_hex_mesh_3()`.
 

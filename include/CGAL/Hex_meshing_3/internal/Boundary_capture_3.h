@@ -276,7 +276,8 @@ public:
     for(Index v = 0; v < P.size(); ++v)   // after snapping: back onto the surface regions
       if(kind[v] == SURFACE) P[v] = constrain(v, P[v]);
     update_hanging();
-    if(!optimise(visitor)) return false;
+    // a cancellation stops the smoothing sweeps only: the steps that make every cell valid run
+    optimise(visitor);
     assign_patches();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
@@ -299,7 +300,7 @@ public:
       remove_invalid_buffer_cells(extra);
     }
     if(rep.removed_buffer_cells > 0) drop_unused_vertices();
-    return true;
+    return !cancelled;
   }
 
 private:
@@ -1093,7 +1094,7 @@ private:
       if(work.empty()) break;
       const std::size_t nwork = work.size();
       const std::size_t moved = sweep();
-      if(!visitor.go_further(double(pass + 1) / opt.passes)) return false;
+      if(!visitor.go_further(double(pass + 1) / opt.passes)) { cancelled = true; break; }
       if(moved * 200 < nwork) break;   // fewer than 0.5 % of the vertices still move
     }
     auto untangle = [&]() {
@@ -1289,6 +1290,7 @@ private:
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
   bool check_region = true;
+  bool cancelled = false;
 };
 
 } // namespace internal
