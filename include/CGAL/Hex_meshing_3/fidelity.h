@@ -15,6 +15,8 @@
 // input's feature edges against the feature edges of the mesh boundary, and back; input corners
 // against the mesh's boundary vertices.
 
+#include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
+
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -271,42 +273,6 @@ struct Feature_fidelity
   double sample_spacing = 0;        ///< the spacing of the samples along the edges (as given, or automatic)
 };
 
-namespace internal {
-// the boundary faces of `mesh` as polygons: each quad with the hanging nodes lying inside its edges
-// (2-master hanging nodes whose masters are the edge's ends, recursively for chains), so that the
-// boundary is conforming where a coarse face meets finer ones, as in `Polyhedral_mesh_3`
-template <typename HexMesh>
-std::vector<std::vector<std::uint32_t>> fidelity_boundary_polygons(const HexMesh& mesh)
-{
-  auto pair_key = [](std::uint64_t a, std::uint64_t b) { return a < b ? (a << 32 | b) : (b << 32 | a); };
-  std::unordered_map<std::uint64_t, std::uint32_t> edge_mid;
-  for(const auto& h : mesh.hanging_nodes)
-    if(h.number_of_masters == 2) edge_mid[pair_key(h.masters[0], h.masters[1])] = std::uint32_t(h.vertex);
-  std::vector<std::vector<std::uint32_t>> polys;
-  polys.reserve(mesh.boundary_faces.size());
-  // appends the vertices strictly inside a -> b, in order
-  auto inside = [&](auto&& self, std::uint32_t a, std::uint32_t b, std::vector<std::uint32_t>& out, int depth) -> void {
-    if(depth > 64) return;
-    auto it = edge_mid.find(pair_key(a, b));
-    if(it == edge_mid.end()) return;
-    const std::uint32_t m = it->second;
-    self(self, a, m, out, depth + 1);
-    out.push_back(m);
-    self(self, m, b, out, depth + 1);
-  };
-  for(const auto& f : mesh.boundary_faces) {
-    std::vector<std::uint32_t> p;
-    p.reserve(8);
-    for(int i = 0; i < 4; ++i) {
-      p.push_back(std::uint32_t(f.vertices[std::size_t(i)]));
-      inside(inside, std::uint32_t(f.vertices[std::size_t(i)]), std::uint32_t(f.vertices[std::size_t((i + 1) % 4)]), p, 0);
-    }
-    polys.push_back(std::move(p));
-  }
-  return polys;
-}
-} // namespace internal
-
 /*!
  * \ingroup PkgHexMeshing3Quality
  * \brief measures how well the boundary of `mesh` captures the feature curves of the input, both
@@ -362,7 +328,7 @@ Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, con
   r.input_feature_edges = input.size();
 
   // mesh feature edges, from the boundary polygons
-  const std::vector<std::vector<std::uint32_t>> polys = internal::fidelity_boundary_polygons(mesh);
+  const std::vector<std::vector<std::uint32_t>> polys = internal::boundary_polygons(mesh);
   std::vector<V> normal(polys.size());
   for(std::size_t f = 0; f < polys.size(); ++f) {
     const auto& q = mesh.boundary_faces[f].vertices;

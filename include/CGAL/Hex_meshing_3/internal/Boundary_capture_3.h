@@ -31,6 +31,7 @@
 
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/quality.h>
+#include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -103,28 +104,6 @@ inline double hex_pyramid_quality(const Vec3* x)
   return q;
 }
 
-// The boundary faces of a hexahedral mesh as polygons: each quad with the hanging midpoints of its
-// edges inserted, so that a coarse face and the two fine faces along its edge share edges.
-template <typename HexMesh>
-std::vector<std::vector<std::uint32_t>> staircase_polygons(const HexMesh& m)
-{
-  std::unordered_map<std::uint64_t, std::uint32_t> mid;
-  for(const auto& h : m.hanging_nodes)
-    if(h.number_of_masters == 2) mid[capture_edge_key(h.masters[0], h.masters[1])] = h.vertex;
-  std::vector<std::vector<std::uint32_t>> polys;
-  polys.reserve(m.boundary_faces.size());
-  for(const auto& f : m.boundary_faces) {
-    std::vector<std::uint32_t> p;
-    for(int i = 0; i < 4; ++i) {
-      p.push_back(f.vertices[i]);
-      auto it = mid.find(capture_edge_key(f.vertices[i], f.vertices[(i + 1) % 4]));
-      if(it != mid.end()) p.push_back(it->second);
-    }
-    polys.push_back(std::move(p));
-  }
-  return polys;
-}
-
 // The cells of a staircase mesh that must go before a buffer layer can be inserted: cells with a
 // corner on a surface face (patch >= 6) closer to the surface than `gap` x the smallest edge of the
 // cells at that corner, and cells at a vertex where the boundary is not a single disk (two cells
@@ -149,7 +128,7 @@ std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Dom
     const auto& h = m.hexahedra[c];
     return CGAL::to_double(m.points[h[1]].x() - m.points[h[0]].x());
   };
-  const auto polys = staircase_polygons(m);
+  const auto polys = boundary_polygons(m);
   std::vector<char> bad_vertex(nv, 0);
   std::size_t n_close = 0, n_nm = 0;
   // too close
