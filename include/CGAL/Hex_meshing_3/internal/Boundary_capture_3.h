@@ -986,10 +986,10 @@ private:
     affected_cells(v, cells);
     const Vec3 x0 = P[v];
     q_old.resize(cells.size());
-    double f0 = 1;
-    for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = cell_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); }
+    double f0 = 1, m0 = 0;
+    for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = cell_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); m0 += q_old[i]; }
     Vec3 best = x0;
-    double fb = f0;
+    double fb = f0, mb = m0;
     const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
     // a move must raise the minimum, and no cell may fall below min(its quality, keep_quality):
     // the worst cell does not get better by making a good one bad
@@ -997,13 +997,15 @@ private:
       const Vec3 x = constrain(v, y);
       if(norm(sub(x, x0)) < 1e-12 * h) return;
       move(v, x);
-      double f = 1;
+      double f = 1, mean = 0;
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const double q = cell_quality(cells[i]);
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
         f = (std::min)(f, q);
+        mean += q;
       }
-      if(f > fb) { fb = f; best = x; }
+      // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
+      if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; }
     };
     const Vec3 s = smoothing_target(v);
     trial(s);
@@ -1028,7 +1030,7 @@ private:
     if(gn > 0 && f0 < opt.target_quality)
       for(double alpha : {0.3, 0.1, 0.03, 0.01}) trial(add(x0, mul(g, alpha * h / gn)));
     // a move must gain something measurable (else sweeps never end on round-off)
-    const bool gain = fb > f0 + 1e-4;
+    const bool gain = fb > f0 + 1e-4 || mb > m0 + 1e-3;
     move(v, gain ? best : x0);
     return gain;
   }
