@@ -1088,17 +1088,20 @@ private:
     // cells still inverted: first their curve and corner vertices go back to being surface
     // vertices (a feature is lost there rather than the surface), then their surface vertices
     // are released into the volume
-    bool unsnapped = false;
-    for(Index c : low)
-      if(cell_quality(c) <= 0)
-        for(Index v : m.hexahedra[c])
-          if(kind[v] == CURVE || kind[v] == CORNER) {
-            kind[v] = SURFACE;
-            unsnapped = true;
-            ++rep.unsnapped_vertices;
-            if(vregion[v] < 0) vregion[v] = region_of_point(P[v]);
-          }
-    if(unsnapped) untangle();
+    // (curve vertices first; corners only if that was not enough)
+    for(const Kind which : {CURVE, CORNER}) {
+      bool unsnapped = false;
+      for(Index c : low)
+        if(cell_quality(c) <= 0)
+          for(Index v : m.hexahedra[c])
+            if(kind[v] == which) {
+              kind[v] = SURFACE;
+              unsnapped = true;
+              ++rep.unsnapped_vertices;
+              if(vregion[v] < 0) vregion[v] = region_of_point(P[v]);
+            }
+      if(unsnapped) untangle();
+    }
     bool released = false;
     for(Index c : low)
       if(cell_quality(c) <= 0)
