@@ -154,22 +154,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     const Features* features = choose_parameter(get_parameter(np, HNP::feature_curves), static_cast<const Features*>(nullptr));
     if(!features) { own = std::make_unique<Features>(domain); features = own.get(); }
     visitor.on_phase_begin("capture", out.number_of_cells());
-    Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features);
+    Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features, stats);
     if(!capture.run(visitor)) status = Hex_meshing_3::Status::CANCELED;
     visitor.on_phase_end("capture");
-    const auto& r = capture.report();
-    stats.buffer_cells = r.buffer_cells;
-    stats.surface_vertices = r.surface_vertices;
-    stats.curve_vertices = r.curve_vertices;
-    stats.corner_vertices = r.corner_vertices;
-    stats.cap_vertices = r.cap_vertices;
-    stats.curves_captured = r.curves_captured;
-    stats.curves_missed = r.curves_missed;
-    stats.optimisation_passes = r.optimisation_passes;
-    stats.unreached_vertices = r.unreached;
-    stats.removed_buffer_cells = r.removed_buffer_cells;
-    stats.unsnapped_vertices = r.unsnapped_vertices;
-    stats.skewed_faces = r.skewed_faces;
     stats.kept_cells = out.number_of_cells();
   }
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::leaks_t>::value) {

@@ -43,23 +43,16 @@ template <typename P> Vec3 vec(const P& p)
 { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; }
 } // namespace internal
 
-/*!
- * \ingroup PkgHexMeshing3Quality
- * \brief Verdict's scaled Jacobian of the hexahedron with corners `p` in VTK order: 1 for a cube,
- * <= 0 for an inverted or degenerate cell.
- */
-template <typename Point_3>
-double scaled_jacobian(const std::array<Point_3, 8>& p)
+namespace internal {
+// Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
+inline double hex_scaled_jacobian(const Vec3* x)
 {
-  using namespace internal;
   static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
-  Vec3 x[8];
-  for(int i = 0; i < 8; ++i) x[i] = vec(p[i]);
   double sj = std::numeric_limits<double>::max();
   auto det = [](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double la = norm(a), lb = norm(b), lc = norm(c);
-    if(la == 0 || lb == 0 || lc == 0) return 0.0;
-    return dot(a, cross(b, c)) / (la * lb * lc);
+    const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(c, c));
+    if(!(l > 0)) return 0.0;
+    return dot(a, cross(b, c)) / l;
   };
   for(int i = 0; i < 8; ++i)
     sj = (std::min)(sj, det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i])));
@@ -68,6 +61,20 @@ double scaled_jacobian(const std::array<Point_3, 8>& p)
   const Vec3 X3 = add(add(sub(x[4], x[0]), sub(x[5], x[1])), add(sub(x[6], x[2]), sub(x[7], x[3])));
   sj = (std::min)(sj, det(X1, X2, X3));
   return (std::max)(-1.0, (std::min)(1.0, sj));
+}
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief Verdict's scaled Jacobian of the hexahedron with corners `p` in VTK order: 1 for a cube,
+ * <= 0 for an inverted or degenerate cell.
+ */
+template <typename Point_3>
+double scaled_jacobian(const std::array<Point_3, 8>& p)
+{
+  internal::Vec3 x[8];
+  for(int i = 0; i < 8; ++i) x[i] = internal::vec(p[i]);
+  return internal::hex_scaled_jacobian(x);
 }
 
 /*!

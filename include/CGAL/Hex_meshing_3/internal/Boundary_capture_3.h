@@ -30,6 +30,7 @@
 //    vertex is released into the volume and reported ("unreached").
 
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+#include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
 
@@ -60,25 +61,6 @@ inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
   return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
 }
 
-// Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
-inline double hex_scaled_jacobian(const Vec3* x)
-{
-  static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
-  double sj = std::numeric_limits<double>::max();
-  auto det = [](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(c, c));
-    if(!(l > 0)) return 0.0;
-    return dot(a, cross(b, c)) / l;
-  };
-  for(int i = 0; i < 8; ++i)
-    sj = (std::min)(sj, det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i])));
-  const Vec3 X1 = add(add(sub(x[1], x[0]), sub(x[2], x[3])), add(sub(x[5], x[4]), sub(x[6], x[7])));
-  const Vec3 X2 = add(add(sub(x[3], x[0]), sub(x[2], x[1])), add(sub(x[7], x[4]), sub(x[6], x[5])));
-  const Vec3 X3 = add(add(sub(x[4], x[0]), sub(x[5], x[1])), add(sub(x[6], x[2]), sub(x[7], x[3])));
-  sj = (std::min)(sj, det(X1, X2, X3));
-  return (std::max)(-1.0, (std::min)(1.0, sj));
-}
-
 // The face pyramids OpenFOAM checks: each face split into 4 triangles around its vertex average,
 // each triangle with the cell's vertex average forms a tetrahedron that must have a positive
 // volume. Returns the smallest of their scaled volumes (6V / product of the 3 edge lengths at the
@@ -104,6 +86,18 @@ inline double hex_pyramid_quality(const Vec3* x)
   return q;
 }
 
+// The cells having each vertex as a corner: those of vertex v are cells[start[v] .. start[v+1])
+template <typename HexMesh>
+void vertex_cells(const HexMesh& m, std::size_t nv, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cells)
+{
+  start.assign(nv + 1, 0);
+  for(const auto& h : m.hexahedra) for(std::uint32_t v : h) ++start[v + 1];
+  for(std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  cells.resize(start[nv]);
+  std::vector<std::uint32_t> pos(start.begin(), start.end() - 1);
+  for(std::uint32_t c = 0; c < m.hexahedra.size(); ++c) for(std::uint32_t v : m.hexahedra[c]) cells[pos[v]++] = c;
+}
+
 // The cells of a staircase mesh that must go before a buffer layer can be inserted: cells with a
 // corner on a surface face (patch >= 6) closer to the surface than `gap` x the smallest edge of the
 // cells at that corner, and cells at a vertex where the boundary is not a single disk (two cells
@@ -115,15 +109,8 @@ std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Dom
 {
   typedef std::uint32_t Index;
   const std::size_t nv = m.points.size();
-  // vertex -> cells (corners)
-  std::vector<Index> start(nv + 1, 0), cells;
-  for(const auto& h : m.hexahedra) for(Index v : h) ++start[v + 1];
-  for(std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  cells.resize(start[nv]);
-  {
-    std::vector<Index> pos(start.begin(), start.end() - 1);
-    for(Index c = 0; c < m.hexahedra.size(); ++c) for(Index v : m.hexahedra[c]) cells[pos[v]++] = c;
-  }
+  std::vector<Index> start, cells;   // vertex -> cells (corners)
+  vertex_cells(m, nv, start, cells);
   auto cell_size = [&](Index c) {
     const auto& h = m.hexahedra[c];
     return CGAL::to_double(m.points[h[1]].x() - m.points[h[0]].x());
@@ -192,24 +179,6 @@ std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Dom
   return out;
 }
 
-/// what the boundary capture did
-struct Boundary_capture_report
-{
-  std::size_t buffer_cells = 0;          ///< hexahedra of the buffer layer
-  std::size_t surface_vertices = 0;      ///< twins placed on the surface
-  std::size_t curve_vertices = 0;        ///< of which snapped onto feature curves
-  std::size_t corner_vertices = 0;       ///< of which snapped onto corners
-  std::size_t cap_vertices = 0;          ///< twins over holes (closest point on an open edge), not projected
-  std::size_t curves_captured = 0, curves_missed = 0, curves_skipped = 0;
-  std::size_t user_lines = 0;            ///< user feature lines among the curves
-  std::vector<std::array<double, 3>> unreached;   ///< surface vertices released to keep cells valid
-  std::size_t optimisation_passes = 0;
-  std::size_t removed_buffer_cells = 0;   ///< buffer cells that could not be made valid (removed)
-  std::size_t unsnapped_vertices = 0;     ///< curve/corner vertices returned to the surface to untangle
-  std::size_t skewed_faces = 0;           ///< faces found skewed beyond `max_skewness` (their buffer cells removed)
-  double min_scaled_jacobian = 0;
-};
-
 template <typename HexMesh, typename Domain, typename FeatureCurves>
 class Boundary_capture_3
 {
@@ -235,11 +204,11 @@ public:
     double max_skewness = 3.5;         ///< buffer cells at a face more skewed than this are removed (OpenFOAM fails > 4)
   };
 
-  Boundary_capture_3(HexMesh& mesh, const Domain& domain, const FeatureCurves* features, const Options& o = Options())
-    : m(mesh), d(domain), fc(features), opt(o)
+  /// `stats` receives the counts of the capture (its body-fitted fields)
+  Boundary_capture_3(HexMesh& mesh, const Domain& domain, const FeatureCurves* features, Meshing_statistics& stats,
+                     const Options& o = Options())
+    : m(mesh), d(domain), fc(features), opt(o), rep(stats)
   {}
-
-  const Boundary_capture_report& report() const { return rep; }
 
   template <typename Visitor>
   bool run(Visitor& visitor)
@@ -362,27 +331,11 @@ private:
       hang_of[m.hanging_nodes[i].vertex] = Index(i);
       kind[m.hanging_nodes[i].vertex] = HANGING;
     }
+    m.points.resize(nv);   // the twins' places are filled at the end; the count is what matters here
     hang_masters.assign(m.hanging_nodes.size(), {});
-    for(std::size_t i = 0; i < m.hanging_nodes.size(); ++i) {
-      std::vector<std::pair<Index, double>> w;
-      add_masters(m.hanging_nodes[i].vertex, 1.0, w, 0);
-      std::sort(w.begin(), w.end());
-      std::vector<std::pair<Index, double>> merged;
-      for(const auto& x : w) {
-        if(!merged.empty() && merged.back().first == x.first) merged.back().second += x.second;
-        else merged.push_back(x);
-      }
-      hang_masters[i] = std::move(merged);
-    }
-    // vertex -> cells
-    cstart.assign(nv + 1, 0);
-    for(const auto& h : m.hexahedra) for(Index v : h) ++cstart[v + 1];
-    for(std::size_t v = 0; v < nv; ++v) cstart[v + 1] += cstart[v];
-    cinc.resize(cstart[nv]);
-    {
-      std::vector<Index> pos(cstart.begin(), cstart.end() - 1);
-      for(Index c = 0; c < m.hexahedra.size(); ++c) for(Index v : m.hexahedra[c]) cinc[pos[v]++] = c;
-    }
+    for(std::size_t i = 0; i < m.hanging_nodes.size(); ++i)
+      for(const auto& x : m.independent_masters(m.hanging_nodes[i].vertex)) hang_masters[i].push_back(x);
+    vertex_cells(m, nv, cstart, cinc);
     // independent vertex -> dependent hanging nodes
     deps.assign(nv, {});
     for(std::size_t i = 0; i < hang_masters.size(); ++i)
@@ -414,14 +367,6 @@ private:
     for(Index v : inner) hloc[twin[v]] = hloc[v];
   }
 
-  void add_masters(Index v, double w, std::vector<std::pair<Index, double>>& out, int depth) const
-  {
-    const Index h = hang_of[v];
-    if(h == NONE || depth > 64) { out.push_back({v, w}); return; }
-    const auto& n = m.hanging_nodes[h];
-    for(int i = 0; i < n.number_of_masters; ++i) add_masters(n.masters[i], w / n.number_of_masters, out, depth + 1);
-  }
-
   void update_hanging()
   {
     for(std::size_t i = 0; i < hang_masters.size(); ++i) recompute_hanging(Index(i));
@@ -443,18 +388,12 @@ private:
     }
     return x;
   }
-  // the closest point of the vertex's region, unless the whole surface has a much closer one (the
-  // region was guessed wrong)
-  Vec3 closest_on_surface(const Vec3& x, int region, double h) const
+  // the closest point of the vertex's region (of the whole surface if it has none)
+  Vec3 closest_on_surface(const Vec3& x, int region) const
   {
     const Point_3 p(x[0], x[1], x[2]);
-    if(region >= 0 && std::size_t(region) < region_trees.size() && region_trees[std::size_t(region)]) {
-      const Vec3 r = vec(region_trees[std::size_t(region)]->closest_point(p));
-      if(!check_region) return r;
-      const Vec3 g = vec(d.closest_point(p));
-      if(norm(sub(r, x)) <= norm(sub(g, x)) + 0.5 * h) return r;
-      return g;
-    }
+    if(region >= 0 && std::size_t(region) < region_trees.size() && region_trees[std::size_t(region)])
+      return vec(region_trees[std::size_t(region)]->closest_point(p));
     return vec(d.closest_point(p));
   }
   Vec3 closest_on_curve(const Vec3& x, int curve) const
@@ -464,7 +403,7 @@ private:
   Vec3 constrain(Index v, const Vec3& x) const
   {
     switch(kind[v]) {
-    case SURFACE: return clamp_planes(v, closest_on_surface(clamp_planes(v, x), region_of_vertex(v), hloc[v]));
+    case SURFACE: return clamp_planes(v, closest_on_surface(clamp_planes(v, x), region_of_vertex(v)));
     case CURVE: return clamp_planes(v, closest_on_curve(x, curve_of[v]));
     case CORNER: case HANGING: return P[v];
     default: return clamp_planes(v, x);
@@ -579,7 +518,6 @@ private:
       if(sc.pts.size() > 3 && sc.pts.front() == sc.pts.back()) { sc.pts.pop_back(); sc.closed = true; }
       else { sc.c0 = corner_of(sc.pts.front()); sc.c1 = corner_of(sc.pts.back()); }
       curves.push_back(std::move(sc));
-      ++rep.user_lines;
       i = j;
     }
     curve_trees.clear();
@@ -619,26 +557,27 @@ private:
           }
     };
     // the nearest allowed outer vertex within 3 local sizes (NONE if none)
-    auto nearest = [&](const Vec3& x, const std::vector<char>& allowed) {
+    auto nearest = [&](const Vec3& x, auto&& allowed) {
       Index best = NONE;
       double bd = std::numeric_limits<double>::max();
       for_near(x, [&](Index u) {
-        if(!allowed[u]) return;
+        if(!allowed(u)) return;
         const double dd = dot(sub(P[u], x), sub(P[u], x));
         if(dd <= 9 * hloc[u] * hloc[u] && (dd < bd || (dd == bd && u < best))) { bd = dd; best = u; }
       });
       return best;
     };
-    std::vector<char> allowed(P.size(), 0), al(P.size(), 0);
+    std::vector<char> allowed(P.size(), 0);   // outer vertices not taken by a corner
     for(Index v : outer) allowed[v] = 1;
+    auto is_allowed = [&](Index u) { return allowed[u] != 0; };
     // curves shorter than two cells are not followed (on a coarse organic mesh, a 30 degree
     // angle finds many tiny ones); the corners are those of the curves followed
     std::vector<char> follow(curves.size(), 0), wanted_corners(corner_pts.size(), 0);
     for(std::size_t c = 0; c < curves.size(); ++c) {
       double len = 0;
       for(const auto& sg : curve_segments[c]) len += std::sqrt(CGAL::to_double(sg.squared_length()));
-      const Index v0 = nearest(curves[c].pts.front(), allowed);
-      if(v0 == NONE || len < 2 * hloc[v0]) { ++rep.curves_skipped; continue; }
+      const Index v0 = nearest(curves[c].pts.front(), is_allowed);
+      if(v0 == NONE || len < 2 * hloc[v0]) continue;
       follow[c] = 1;
       if(!curves[c].closed) { wanted_corners[std::size_t(curves[c].c0)] = 1; wanted_corners[std::size_t(curves[c].c1)] = 1; }
     }
@@ -658,7 +597,7 @@ private:
         if(sees) { bd = dd; v = u; }
       });
       if(v == NONE) {   // none sees it: the nearest
-        v = nearest(c, allowed);
+        v = nearest(c, is_allowed);
         if(v != NONE && norm(sub(P[v], c)) > 3 * hloc[v]) v = NONE;
       }
       if(v == NONE) continue;
@@ -685,8 +624,7 @@ private:
         if(!cv.closed) v = corner_vertex[std::size_t(k == 0 ? cv.c0 : cv.c1)];
         else if(k + 1 == way.size()) v = wv.front();
         else {
-          for(Index u : outer) al[u] = kind[u] == SURFACE && !used[u];
-          v = nearest(pts[way[k]], al);
+          v = nearest(pts[way[k]], [&](Index u) { return kind[u] == SURFACE && !used[u]; });
           if(v != NONE && norm(sub(P[v], pts[way[k]])) > 2 * hloc[v]) v = NONE;
         }
         if(v == NONE) { ok = false; break; }
@@ -914,15 +852,6 @@ private:
         region_trees[r]->accelerate_distance_queries();
       }
     }
-    // a vertex whose region is much farther than the surface (the region was guessed wrong) is
-    // projected onto the whole surface; checked once here, not at every move
-    for(Index v = 0; v < P.size(); ++v) {
-      if(kind[v] != SURFACE || vregion[v] < 0) continue;
-      const Vec3 r = closest_on_surface(P[v], vregion[v], hloc[v]);
-      const Vec3 g = vec(d.closest_point(Point_3(P[v][0], P[v][1], P[v][2])));
-      if(norm(sub(r, P[v])) > norm(sub(g, P[v])) + 0.5 * hloc[v]) vregion[v] = -1;
-    }
-    check_region = false;
   }
 
   // -----------------------------------------------------------------------------------------------
@@ -1036,7 +965,7 @@ private:
   }
 
   template <typename Visitor>
-  bool optimise(Visitor& visitor)
+  void optimise(Visitor& visitor)
   {
     // Only cells below the target are worked on, and only cells around a moved vertex can change:
     // `low` (the cells below the target) is kept up to date from the cells each move touched,
@@ -1106,12 +1035,8 @@ private:
     for(Index c : low)
       if(cell_quality(c) <= 0)
         for(Index v : m.hexahedra[c])
-          if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) { kind[v] = RELEASED; released = true; rep.unreached.push_back(P[v]); }
+          if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) { kind[v] = RELEASED; released = true; rep.unreached_vertices.push_back(P[v]); }
     if(released) untangle();
-    double qmin = 1;
-    for(Index c = 0; c < m.hexahedra.size(); ++c) qmin = (std::min)(qmin, cell_quality(c));
-    rep.min_scaled_jacobian = qmin;
-    return true;
   }
 
 
@@ -1249,7 +1174,7 @@ private:
   const Domain& d;
   const FeatureCurves* fc;
   Options opt;
-  Boundary_capture_report rep;
+  Meshing_statistics& rep;   // the buffer_cells count is also where the buffer cells start
   double box_lo[3], box_hi[3];
   std::vector<Vec3> P;
   std::vector<double> q_old;
@@ -1273,7 +1198,6 @@ private:
   std::vector<std::vector<Triangle_3>> region_triangles;
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
-  bool check_region = true;
   bool cancelled = false;
 };
 
