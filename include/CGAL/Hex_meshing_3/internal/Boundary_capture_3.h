@@ -86,6 +86,27 @@ inline double hex_pyramid_quality(const Vec3* x)
   return q;
 }
 
+// Knupp's shape energy of a hexahedron: the mean over its 8 corners of the squared condition
+// number of the corner's Jacobian matrix A (its three edges), |A|^2 |adj A|^2 / (9 det^2); 1 for a
+// cube, growing without bound as a corner flattens. The determinant is Escobar et al.'s
+// regularised one, (det + sqrt(det^2 + 4 delta^2)) / 2, so an inverted corner has a finite (very
+// large) energy that decreases towards validity: one objective untangles and smooths.
+inline double hex_shape_energy(const Vec3* x, double delta2)
+{
+  static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
+  double e = 0;
+  for(int i = 0; i < 8; ++i) {
+    const Vec3 a = sub(x[nb[i][0]], x[i]), b = sub(x[nb[i][1]], x[i]), c = sub(x[nb[i][2]], x[i]);
+    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    const double det = dot(a, bc);
+    const double hd = 0.5 * (det + std::sqrt(det * det + 4 * delta2));
+    const double f2 = dot(a, a) + dot(b, b) + dot(c, c);
+    const double g2 = dot(bc, bc) + dot(ca, ca) + dot(ab, ab);
+    e += f2 * g2 / (9 * hd * hd);
+  }
+  return e / 8;
+}
+
 // The cells having each vertex as a corner: those of vertex v are cells[start[v] .. start[v+1])
 template <typename HexMesh>
 void vertex_cells(const HexMesh& m, std::size_t nv, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cells)
@@ -195,7 +216,8 @@ public:
   struct Options
   {
     double target_quality = 0.6;   ///< cells below this minimum scaled Jacobian are optimised
-    int passes = 10;               ///< optimisation sweeps at most (more sweeps do not raise the worst cells further)
+    int passes = 20;               ///< optimisation sweeps at most
+    int final_passes = 10;          ///< sweeps after vertices were released
     double snap_weight = 4;        ///< bias of the feature paths towards their curve
     double turn_penalty = 20;      ///< extra cost (x edge length) of a path turning inside a top face
     double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
@@ -964,6 +986,54 @@ private:
     return gain;
   }
 
+  // One Gauss-Seidel step on the shape energy of the vertex's cells: a backtracking line search
+  // along the negative (central-difference) gradient, each trial point constrained to the vertex's
+  // surface, curve or planes. Taken if the energy drops and no cell falls below min(its quality,
+  // keep_quality). Returns true if the vertex moved.
+  bool relax(Index v, std::vector<Index>& cells)
+  {
+    affected_cells(v, cells);
+    const Vec3 x0 = P[v];
+    const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+    const double delta2 = 1e-6 * h * h * h * h * h * h;
+    auto energy = [&]() {
+      double e = 0;
+      for(Index c : cells) {
+        Vec3 x[8];
+        for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
+        e += hex_shape_energy(x, delta2);
+      }
+      return e;
+    };
+    q_old.resize(cells.size());
+    for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
+    const double e0 = energy();
+    const double eps = 1e-4 * h;
+    Vec3 g{{0, 0, 0}};
+    for(int a = 0; a < 3; ++a) {
+      Vec3 y = x0;
+      y[a] = x0[a] + eps; move(v, y); const double ep = energy();
+      y[a] = x0[a] - eps; move(v, y); const double em = energy();
+      g[a] = (ep - em) / (2 * eps);
+    }
+    move(v, x0);
+    const double gn = norm(g);
+    if(!(gn > 0)) return false;
+    const Vec3 dir = mul(g, -1.0 / gn);
+    for(double alpha = 0.25; alpha > 1e-3; alpha *= 0.5) {
+      const Vec3 x = constrain(v, add(x0, mul(dir, alpha * h)));
+      if(norm(sub(x, x0)) < 1e-9 * h) continue;
+      move(v, x);
+      if(!(energy() < e0 * (1 - 1e-6))) continue;
+      bool ok = true;
+      for(std::size_t i = 0; i < cells.size() && ok; ++i)
+        ok = cell_quality(cells[i]) >= (std::min)(q_old[i], opt.keep_quality);
+      if(ok) return true;
+    }
+    move(v, x0);
+    return false;
+  }
+
   template <typename Visitor>
   void optimise(Visitor& visitor)
   {
@@ -979,13 +1049,13 @@ private:
       } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
     };
     // improves the vertices in `work`; returns the number moved and refreshes `low`
-    auto sweep = [&]() {
+    auto sweep = [&](bool smooth_energy) {
       std::sort(work.begin(), work.end());
       std::size_t moved = 0;
       touched.clear();
       for(Index v : work) {
         in_work[v] = 0;
-        if(!improve(v, cells)) continue;
+        if(!(smooth_energy ? relax(v, cells) : improve(v, cells))) continue;
         ++moved;
         for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
       }
@@ -996,21 +1066,29 @@ private:
       for(Index c : touched) { mark[c] = 0; if(cell_quality(c) < opt.target_quality) low.push_back(c); }
       return moved;
     };
-    for(int pass = 0; pass < opt.passes; ++pass) {
+    // Sweeps alternate between the shape energy (smooth: every cell of a vertex counts, so
+    // neighbouring vertices improve a cell together; it spreads crowded vertices) and the worst
+    // cells' minimum (what the energy averages away). Either alone stalls much earlier.
+    for(int pass = 0, idle = 0; pass < opt.passes && !cancelled; ++pass) {
       for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
       if(pass < 3)   // the first sweeps set every inner buffer vertex under its twin
         for(Index v : inner) add_vertex(v);
       rep.optimisation_passes = std::size_t(pass + 1);
       if(work.empty()) break;
       const std::size_t nwork = work.size();
-      const std::size_t moved = sweep();
+      const std::size_t moved = sweep(pass % 2 == 0);
       if(!visitor.go_further(double(pass + 1) / opt.passes)) { cancelled = true; break; }
-      if(moved * 200 < nwork) break;   // fewer than 0.5 % of the vertices still move
+      idle = moved * 200 < nwork ? idle + 1 : 0;   // fewer than 0.5 % of the vertices still move
+      if(idle == 2) break;
     }
     auto untangle = [&]() {
       for(int pass = 0; pass < opt.passes; ++pass) {
         for(Index c : low) if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) add_vertex(v);
-        if(work.empty() || sweep() == 0) break;
+        if(work.empty()) break;
+        // the shape energy's barrier pulls inverted corners back; the max-min step then works on
+        // what is left
+        const bool energy = pass % 2 == 0;
+        if(sweep(energy) == 0 && !energy) break;
       }
       work.clear();
     };
@@ -1031,12 +1109,36 @@ private:
             }
       if(unsnapped) untangle();
     }
+    for(int round = 0; round < 4; ++round) {
     bool released = false;
     for(Index c : low)
       if(cell_quality(c) <= 0)
         for(Index v : m.hexahedra[c])
-          if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) { kind[v] = RELEASED; released = true; rep.unreached_vertices.push_back(P[v]); }
-    if(released) untangle();
+          if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) {
+            kind[v] = RELEASED;
+            released = true;
+            rep.unreached_vertices.push_back(P[v]);
+            // it starts again from the plain extrusion of the staircase: its inner vertex plus a
+            // buffer thickness along the staircase normal (a snap may have dragged it cells away)
+            Vec3 n{{0, 0, 0}};
+            for(const Vec3& f : fnormals[v]) n = add(n, f);
+            const double l = norm(n);
+            if(l > 0 && inner_of[v] != NONE)
+              move(v, clamp_planes(v, add(P[inner_of[v]], mul(n, opt.buffer_thickness * hloc[v] / l))));
+          }
+    if(!released) break;
+    untangle();
+    }
+    // the cells around released vertices were only untangled: smooth them (and whatever else is
+    // still below the target) once more
+    if(!rep.unreached_vertices.empty())
+      for(int pass = 0, idle = 0; pass < opt.final_passes && !cancelled; ++pass) {
+        for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
+        if(work.empty()) break;
+        const std::size_t nwork = work.size();
+        idle = sweep(pass % 2 == 0) * 200 < nwork ? idle + 1 : 0;
+        if(idle == 2) break;
+      }
   }
 
 
