@@ -218,6 +218,7 @@ public:
     double target_quality = 0.6;   ///< cells below this minimum scaled Jacobian are optimised
     int passes = 20;               ///< optimisation sweeps at most
     int final_passes = 10;          ///< sweeps after vertices were released
+    int reattach_rounds = 10;      ///< rounds moving released vertices back towards the surface
     double snap_weight = 4;        ///< bias of the feature paths towards their curve
     double turn_penalty = 20;      ///< extra cost (x edge length) of a path turning inside a top face
     double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
@@ -1109,6 +1110,7 @@ private:
             }
       if(unsnapped) untangle();
     }
+    bool any_released = false;
     for(int round = 0; round < 4; ++round) {
     bool released = false;
     for(Index c : low)
@@ -1117,7 +1119,7 @@ private:
           if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) {
             kind[v] = RELEASED;
             released = true;
-            rep.unreached_vertices.push_back(P[v]);
+            any_released = true;
             // it starts again from the plain extrusion of the staircase: its inner vertex plus a
             // buffer thickness along the staircase normal (a snap may have dragged it cells away)
             Vec3 n{{0, 0, 0}};
@@ -1131,14 +1133,53 @@ private:
     }
     // the cells around released vertices were only untangled: smooth them (and whatever else is
     // still below the target) once more
-    if(!rep.unreached_vertices.empty())
-      for(int pass = 0, idle = 0; pass < opt.final_passes && !cancelled; ++pass) {
+    auto smooth = [&](int passes) {
+      for(int pass = 0, idle = 0; pass < passes && !cancelled; ++pass) {
         for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
         if(work.empty()) break;
         const std::size_t nwork = work.size();
         idle = sweep(pass % 2 == 0) * 200 < nwork ? idle + 1 : 0;
         if(idle == 2) break;
       }
+    };
+    if(!any_released) return;
+    smooth(opt.final_passes);
+    // Fidelity before quality: released vertices go back towards the surface as far as their
+    // cells allow (none may fall below min(its quality, keep_quality)); one that reaches it is a
+    // surface vertex again. Smoothing between the rounds makes room.
+    std::vector<Index> released_list;
+    for(Index v = 0; v < P.size(); ++v) if(kind[v] == RELEASED) released_list.push_back(v);
+    for(int round = 0; round < opt.reattach_rounds && !cancelled; ++round) {
+      std::size_t moved = 0;
+      for(Index v : released_list) {
+        if(kind[v] != RELEASED) continue;
+        const int r = region_of_point(P[v]);
+        const Vec3 x0 = P[v];
+        const Vec3 target = clamp_planes(v, closest_on_surface(x0, r));
+        affected_cells(v, cells);
+        q_old.resize(cells.size());
+        for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
+        bool done = false;
+        for(double t : {1.0, 0.5, 0.25}) {
+          move(v, add(x0, mul(sub(target, x0), t)));
+          bool ok = true;
+          for(std::size_t i = 0; i < cells.size() && ok; ++i)
+            ok = cell_quality(cells[i]) >= (std::min)(q_old[i], opt.keep_quality);
+          if(!ok) continue;
+          if(t == 1.0) { kind[v] = SURFACE; vregion[v] = r; }
+          ++moved;
+          done = true;
+          for(Index c : cells) if(cell_quality(c) < opt.target_quality) low.push_back(c);
+          break;
+        }
+        if(!done) move(v, x0);
+      }
+      std::sort(low.begin(), low.end());
+      low.erase(std::unique(low.begin(), low.end()), low.end());
+      if(moved == 0) break;
+      smooth(2);
+    }
+    for(Index v : released_list) if(kind[v] == RELEASED) rep.unreached_vertices.push_back(P[v]);
   }
 
 
