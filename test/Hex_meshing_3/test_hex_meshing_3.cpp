@@ -1208,7 +1208,7 @@ void test_body_fitted()
       for(int a = 0; a < 3; ++a) assert(std::abs(closure[c][a]) < 1e-9 * ext * ext);
     }
     assert(qmin > 0);
-    // surface faces on the input: on average within 0.4 x the surface size (the goal is 0.25 x for every face)
+    // surface faces on the input: on average within 0.15 x the surface size (the goal is 0.25 x for every face)
     const HM::Boundary_fidelity bf = HM::boundary_fidelity(m, d, 2000);
     const HM::Feature_fidelity ff = HM::feature_fidelity(m, d, f);
     std::cout << "  " << file << ": " << m.number_of_cells() << " cells (" << st.buffer_cells << " buffer), min SJ "
@@ -1217,7 +1217,9 @@ void test_body_fitted()
               << " / " << ff.mesh_to_input / s << ", corners " << ff.max_corner_distance / s << " (x surface size); "
               << st.curves_captured << " curves captured, " << st.curves_missed << " missed, "
               << st.unreached_vertices.size() << " vertices off the surface\n";
-    assert(bf.mean_face_distance <= 0.4 * s);
+    // the capture removes buffer cells below 0.02 and releases few vertices
+    assert(qmin >= 0.02 && st.unreached_vertices.size() <= 20);
+    assert(bf.mean_face_distance <= 0.15 * s);
     if(std::string(file) == "data/cube.off") {
       // every vertex reached the cube; its corners and edges are in the mesh exactly
       assert(st.unreached_vertices.empty() && st.corner_vertices == 8 && st.curves_captured == 12);
