@@ -107,6 +107,40 @@ inline double hex_shape_energy(const Vec3* x, double delta2)
   return e / 8;
 }
 
+// hex_shape_energy() and its gradient with respect to each corner (added to g[0..7])
+inline double hex_shape_energy_gradient(const Vec3* x, double delta2, Vec3* g)
+{
+  static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
+  double e = 0;
+  for(int i = 0; i < 8; ++i) {
+    const Vec3 a = sub(x[nb[i][0]], x[i]), b = sub(x[nb[i][1]], x[i]), c = sub(x[nb[i][2]], x[i]);
+    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
+    const double det = dot(a, bc);
+    const double sq = std::sqrt(det * det + 4 * delta2);
+    const double hd = 0.5 * (det + sq);
+    const double aa = dot(a, a), bb = dot(b, b), cc = dot(c, c);
+    const double f2 = aa + bb + cc;
+    const double g2 = dot(bc, bc) + dot(ca, ca) + dot(ab, ab);
+    const double k = 1.0 / (72 * hd * hd);   // the mean over 8 corners of f2 g2 / (9 hd^2)
+    e += f2 * g2 * k;
+    if(!(sq > 0)) continue;
+    const double ab_ = dot(a, b), bc_ = dot(b, c), ca_ = dot(c, a);
+    // d/dv [f2 g2 / hd^2] = (2 v g2 + f2 dg2/dv) / hd^2 - 2 f2 g2 / (hd^2 sq) ddet/dv
+    const Vec3 dga = add(mul(a, 2 * (cc + bb)), add(mul(c, -2 * ca_), mul(b, -2 * ab_)));
+    const Vec3 dgb = add(mul(b, 2 * (cc + aa)), add(mul(c, -2 * bc_), mul(a, -2 * ab_)));
+    const Vec3 dgc = add(mul(c, 2 * (bb + aa)), add(mul(b, -2 * bc_), mul(a, -2 * ca_)));
+    const double t = -2 * f2 * g2 / sq;
+    const Vec3 da = mul(add(add(mul(a, 2 * g2), mul(dga, f2)), mul(bc, t)), k);
+    const Vec3 db = mul(add(add(mul(b, 2 * g2), mul(dgb, f2)), mul(ca, t)), k);
+    const Vec3 dc = mul(add(add(mul(c, 2 * g2), mul(dgc, f2)), mul(ab, t)), k);
+    g[nb[i][0]] = add(g[nb[i][0]], da);
+    g[nb[i][1]] = add(g[nb[i][1]], db);
+    g[nb[i][2]] = add(g[nb[i][2]], dc);
+    g[i] = sub(g[i], add(add(da, db), dc));
+  }
+  return e;
+}
+
 // The cells having each vertex as a corner: those of vertex v are cells[start[v] .. start[v+1])
 template <typename HexMesh>
 void vertex_cells(const HexMesh& m, std::size_t nv, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cells)
@@ -216,7 +250,7 @@ public:
   struct Options
   {
     double target_quality = 0.6;   ///< cells below this minimum scaled Jacobian are optimised
-    int passes = 20;               ///< optimisation sweeps at most
+    int passes = 12;               ///< optimisation sweeps at most
     int final_passes = 10;          ///< sweeps after vertices were released
     int reattach_rounds = 10;      ///< rounds moving released vertices back towards the surface
     double snap_weight = 4;        ///< bias of the feature paths towards their curve
@@ -1008,16 +1042,28 @@ private:
     };
     q_old.resize(cells.size());
     for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
-    const double e0 = energy();
-    const double eps = 1e-4 * h;
-    Vec3 g{{0, 0, 0}};
-    for(int a = 0; a < 3; ++a) {
+    // the hanging nodes that follow the vertex move by a fixed fraction of its displacement
+    dep_weights.clear();
+    if(!deps[v].empty()) {
+      for(Index d_ : deps[v]) dep_weights.push_back({d_, P[d_][0]});
       Vec3 y = x0;
-      y[a] = x0[a] + eps; move(v, y); const double ep = energy();
-      y[a] = x0[a] - eps; move(v, y); const double em = energy();
-      g[a] = (ep - em) / (2 * eps);
+      y[0] += h;
+      move(v, y);
+      for(auto& dw : dep_weights) dw.second = (P[dw.first][0] - dw.second) / h;
+      move(v, x0);
     }
-    move(v, x0);
+    double e0 = 0;
+    Vec3 g{{0, 0, 0}};
+    for(Index c : cells) {
+      Vec3 x[8], G[8];
+      for(int k = 0; k < 8; ++k) { x[k] = P[m.hexahedra[c][k]]; G[k] = Vec3{{0, 0, 0}}; }
+      e0 += hex_shape_energy_gradient(x, delta2, G);
+      for(int k = 0; k < 8; ++k) {
+        const Index u = m.hexahedra[c][k];
+        if(u == v) g = add(g, G[k]);
+        else for(const auto& dw : dep_weights) if(dw.first == u) g = add(g, mul(G[k], dw.second));
+      }
+    }
     const double gn = norm(g);
     if(!(gn > 0)) return false;
     const Vec3 dir = mul(g, -1.0 / gn);
@@ -1321,6 +1367,7 @@ private:
   double box_lo[3], box_hi[3];
   std::vector<Vec3> P;
   std::vector<double> q_old;
+  std::vector<std::pair<Index, double>> dep_weights;
   std::vector<std::vector<Vec3>> fnormals;   // unit staircase face normals at each twin
   std::vector<Index> twin, inner, inner_of;
   std::vector<std::size_t> top_faces;
