@@ -1143,6 +1143,8 @@ private:
     // vertices (a feature is lost there rather than the surface), then their surface vertices
     // are released into the volume
     // (curve vertices first; corners only if that was not enough)
+    struct Lost { Index v; Kind kind; Vec3 where; };
+    std::vector<Lost> unsnapped_list;
     for(const Kind which : {CURVE, CORNER}) {
       bool unsnapped = false;
       for(Index c : low)
@@ -1152,6 +1154,7 @@ private:
               kind[v] = SURFACE;
               unsnapped = true;
               ++rep.unsnapped_vertices;
+              unsnapped_list.push_back({v, which, P[v]});
               if(vregion[v] < 0) vregion[v] = region_of_point(P[v]);
             }
       if(unsnapped) untangle();
@@ -1188,31 +1191,50 @@ private:
         if(idle == 2) break;
       }
     };
-    if(!any_released) return;
+    if(!any_released && unsnapped_list.empty()) return;
     smooth(opt.final_passes);
-    // Fidelity before quality: released vertices go back towards the surface as far as their
-    // cells allow (none may fall below min(its quality, keep_quality)); one that reaches it is a
-    // surface vertex again. Smoothing between the rounds makes room.
+    // Fidelity before quality: vertices that lost their constraint go back as far as their cells
+    // allow (none may fall below min(its quality, keep_quality)) - released vertices towards the
+    // surface, unsnapped ones towards their curve or corner; one that reaches it takes its kind
+    // again. Smoothing between the rounds makes room.
     std::vector<Index> released_list;
     for(Index v = 0; v < P.size(); ++v) if(kind[v] == RELEASED) released_list.push_back(v);
+    std::vector<std::pair<Index, std::size_t>> todo;   // vertex, its entry in unsnapped_list (or none)
+    for(Index v : released_list) todo.push_back({v, std::size_t(-1)});
+    for(std::size_t i = 0; i < unsnapped_list.size(); ++i) todo.push_back({unsnapped_list[i].v, i});
     for(int round = 0; round < opt.reattach_rounds && !cancelled; ++round) {
       std::size_t moved = 0;
-      for(Index v : released_list) {
-        if(kind[v] != RELEASED) continue;
-        const int r = region_of_point(P[v]);
+      for(const auto& td : todo) {
+        const Index v = td.first;
+        Vec3 target;
+        Kind goal;
+        int r = -1;
         const Vec3 x0 = P[v];
-        const Vec3 target = clamp_planes(v, closest_on_surface(x0, r));
+        if(kind[v] == RELEASED) {
+          if(td.second != std::size_t(-1)) continue;   // its surface entry comes first
+          r = region_of_point(x0);
+          target = clamp_planes(v, closest_on_surface(x0, r));
+          goal = SURFACE;
+        } else if(kind[v] == SURFACE && td.second != std::size_t(-1)) {
+          const Lost& l = unsnapped_list[td.second];
+          goal = l.kind;
+          target = goal == CORNER ? l.where : clamp_planes(v, closest_on_curve(x0, curve_of[v]));
+        } else continue;
         affected_cells(v, cells);
         q_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
         bool done = false;
         for(double t : {1.0, 0.5, 0.25}) {
-          move(v, add(x0, mul(sub(target, x0), t)));
+          const Vec3 y = add(x0, mul(sub(target, x0), t));
+          move(v, t == 1.0 || goal == SURFACE ? y : constrain(v, y));
           bool ok = true;
           for(std::size_t i = 0; i < cells.size() && ok; ++i)
             ok = cell_quality(cells[i]) >= (std::min)(q_old[i], opt.keep_quality);
           if(!ok) continue;
-          if(t == 1.0) { kind[v] = SURFACE; vregion[v] = r; }
+          if(t == 1.0) {
+            kind[v] = goal;
+            if(goal == SURFACE) vregion[v] = r; else --rep.unsnapped_vertices;
+          }
           ++moved;
           done = true;
           for(Index c : cells) if(cell_quality(c) < opt.target_quality) low.push_back(c);
