@@ -395,7 +395,7 @@ int main(int argc, char** argv)
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
                 << stats.buffer_cells << " buffer cells, " << stats.surface_vertices << " vertices on the surface ("
                 << stats.curve_vertices << " on " << stats.curves_captured << " feature curves, " << stats.corner_vertices
-                << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curves_missed
+                << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curve_gaps << " curve ends short of their corner, " << stats.curves_missed
                 << " curves missed, " << stats.unreached_vertices.size() << " vertices could not reach the surface, "
                 << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)\n";
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
@@ -589,7 +589,7 @@ int main(int argc, char** argv)
                            {"unsnapped_vertices", stats.unsnapped_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
-                           {"curves_missed", stats.curves_missed}, {"optimisation_passes", stats.optimisation_passes},
+                           {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
                            {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", un}};
         }
         j["grid"] = {{"initial_cells", {stats.initial_cells[0], stats.initial_cells[1], stats.initial_cells[2]}},

@@ -120,6 +120,7 @@ struct Meshing_statistics
   std::size_t cap_vertices = 0;             ///< buffer vertices over holes of the input (not projected)
   std::size_t curves_captured = 0;          ///< feature curves followed by a chain of mesh edges
   std::size_t curves_missed = 0;            ///< feature curves no chain was found for
+  std::size_t curve_gaps = 0;               ///< ends of captured curves left 1.5 cells short (walled in by other curves at a corner)
   std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
   std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
   std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface to untangle cells

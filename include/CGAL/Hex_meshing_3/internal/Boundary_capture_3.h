@@ -693,27 +693,59 @@ private:
       // arc length of the curve at its vertices
       std::vector<double> arc{0};
       for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
-      std::vector<std::vector<Index>> pieces;
+      // a path that never turns inside a face if there is one, else one that turns as little as
+      // it can
+      auto find_path = [&](Index a, Index b) {
+        std::vector<Index> p = shortest_path(a, b, int(c), used, true);
+        if(p.empty()) p = shortest_path(a, b, int(c), used, false);
+        return p;
+      };
+      // a free surface vertex within one local size of the curve's point at arc length s
+      auto free_near = [&](double s) {
+        const Vec3 x = point_at(c, arc, s);
+        Index v = nearest(x, [&](Index u) { return kind[u] == SURFACE && !used[u]; });
+        if(v != NONE && norm(sub(P[v], x)) > hloc[v]) v = NONE;
+        return v;
+      };
+      struct Piece { std::vector<Index> path; double s0, s1; };
+      std::vector<Piece> pieces;
       std::vector<Index> marked;
+      std::size_t gaps = 0;
       for(std::size_t k = 0; k + 1 < wv.size() && ok; ++k) {
-        // a path that never turns inside a face if there is one, else one that turns as little
-        // as it can
-        pieces.push_back(shortest_path(wv[k], wv[k + 1], int(c), used, true));
-        if(pieces.back().empty()) pieces.back() = shortest_path(wv[k], wv[k + 1], int(c), used, false);
-        if(pieces.back().empty()) ok = false;
-        for(std::size_t i = 1; i + 1 < pieces.back().size(); ++i) { used[pieces.back()[i]] = 1; marked.push_back(pieces.back()[i]); }
+        double s0 = arc[way[k]], s1 = (k + 2 == wv.size() && cv.closed) ? arc.back() : arc[way[k + 1]];
+        std::vector<Index> p = find_path(wv[k], wv[k + 1]);
+        if(p.empty()) {
+          // an end walled in by the curves already followed (three or more meet at a corner that
+          // has few edges): the piece starts or ends 1.5 local sizes along the curve instead,
+          // leaving that much of the curve uncaptured
+          const double step = 1.5 * hloc[wv[k]];
+          if(s1 - s0 > 4 * step) {
+            const Index a2 = free_near(s0 + step), b2 = free_near(s1 - step);
+            const std::pair<Index, Index> tries[3] = {{a2, wv[k + 1]}, {wv[k], b2}, {a2, b2}};
+            for(const auto& t : tries) {
+              if(t.first == NONE || t.second == NONE || t.first == t.second) continue;
+              p = find_path(t.first, t.second);
+              if(p.empty()) continue;
+              if(t.first != wv[k]) { s0 += step; used[t.first] = 1; marked.push_back(t.first); ++gaps; }
+              if(t.second != wv[k + 1]) { s1 -= step; used[t.second] = 1; marked.push_back(t.second); ++gaps; }
+              break;
+            }
+          }
+        }
+        if(p.empty()) { ok = false; break; }
+        for(std::size_t i = 1; i + 1 < p.size(); ++i) { used[p[i]] = 1; marked.push_back(p[i]); }
+        pieces.push_back({std::move(p), s0, s1});
       }
       if(!ok) {
         for(Index v : marked) used[v] = 0;
         ++rep.curves_missed; continue;
       }
       ++rep.curves_captured;
+      rep.curve_gaps += gaps;
       // snap the path vertices onto the curve, spaced along it as they are along the path (a
       // closest-point snap could put two of them on one point)
-      std::vector<Index> path;
-      for(std::size_t k = 0; k < pieces.size(); ++k) {
-        const auto& pc = pieces[k];
-        const double s0 = arc[way[k]], s1 = (k + 1 == pieces.size() && cv.closed) ? arc.back() : arc[way[k + 1]];
+      for(const Piece& piece : pieces) {
+        const auto& pc = piece.path;
         // where the path turns inside a top face (two of its edges in a row), the middle vertex is
         // not snapped: three corners of one face on the curve would flatten it; the curve crosses
         // that face along its diagonal
@@ -728,21 +760,19 @@ private:
         }
         for(std::size_t i = 0; i < pc.size(); ++i) {
           const Index v = pc[i];
-          if(!path.empty() && path.back() == v) continue;
-          path.push_back(v);
           used[v] = 1;
-          if(kind[v] != SURFACE || skip[i]) continue;   // corners stay
+          if(kind[v] != SURFACE || skip[i]) continue;   // corners stay; shared ends are placed once
           kind[v] = CURVE;
           curve_of[v] = int(c);
           const double t = cum.back() > 0 ? cum[i] / cum.back() : 0;
-          P[v] = clamp_planes(v, point_at(c, arc, s0 + t * (s1 - s0)));
+          P[v] = clamp_planes(v, point_at(c, arc, piece.s0 + t * (piece.s1 - piece.s0)));
           ++rep.curve_vertices;
         }
-      }
-      for(std::size_t i = 0; i + 1 < path.size(); ++i) {
-        feature_edges.insert(capture_edge_key(path[i], path[i + 1]));
-        cnbrs[path[i]].push_back(path[i + 1]);
-        cnbrs[path[i + 1]].push_back(path[i]);
+        for(std::size_t i = 0; i + 1 < pc.size(); ++i) {
+          feature_edges.insert(capture_edge_key(pc[i], pc[i + 1]));
+          cnbrs[pc[i]].push_back(pc[i + 1]);
+          cnbrs[pc[i + 1]].push_back(pc[i]);
+        }
       }
     }
     update_hanging();
@@ -779,8 +809,6 @@ private:
     dist[from] = 0;
     q.push({0, from});
     auto dcurve = [&](Index v) { return norm(sub(closest_on_curve(P[v], curve), P[v])); };
-    const Vec3 a = P[from], b = P[to];
-    const double span = norm(sub(a, b));
     while(!q.empty()) {
       const auto [dv, v] = q.top();
       q.pop();
@@ -797,7 +825,6 @@ private:
         // stay near the curve: at most a few cells away and within the ends' neighbourhood
         const double dw = dcurve(w);
         if(dw > 3 * hloc[w]) continue;
-        if(norm(sub(P[w], a)) > span + 4 * hloc[w] && norm(sub(P[w], b)) > span + 4 * hloc[w]) continue;
         // a vertex whose inner vertex does not see its curve point in front of its staircase faces
         // would make flat buffer cells once snapped: allowed, at a price
         double penalty = 0;
