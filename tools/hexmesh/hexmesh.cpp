@@ -469,7 +469,17 @@ int main(int argc, char** argv)
     t = std::chrono::steady_clock::now();
     HM::Polyhedral_mesh_3 pm;
     pm.build(mesh);
-    const HM::Mesh_quality q = HM::compute_quality(mesh, pm);
+    // an OpenFOAM case gets its hanging nodes bulged slightly (write_OpenFOAM): the quality is
+    // then measured on what is written there, as checkMesh measures it
+    bool foam_output = false;
+    for(const std::string& o : outputs) foam_output = foam_output || output_kind(o) == Output_kind::OPENFOAM;
+    Mesh bulged;
+    if(foam_output && mesh.has_hanging_nodes()) {
+      bulged = mesh;
+      const auto x = HM::IO::internal::foam_points(mesh, HM::IO::default_hanging_bulge);
+      for(std::size_t v = 0; v < x.size(); ++v) bulged.points[v] = K::Point_3(x[v][0], x[v][1], x[v][2]);
+    }
+    const HM::Mesh_quality q = HM::compute_quality(bulged.points.empty() ? mesh : bulged, pm);
     const double t_quality = since(t);
     const auto sj = HM::Mesh_quality::range(q.scaled_jacobian);
     const auto no = HM::Mesh_quality::range(q.non_orthogonality);
@@ -489,7 +499,7 @@ int main(int argc, char** argv)
         case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, q.scaled_jacobian); break;
         case Output_kind::MSH: ok = HM::IO::write_MSH(o, mesh); break;
         case Output_kind::MEDIT: ok = HM::IO::write_Medit(o, mesh); break;
-        case Output_kind::OPENFOAM: ok = HM::IO::write_OpenFOAM(o, mesh, pm); break;
+        case Output_kind::OPENFOAM: ok = HM::IO::write_OpenFOAM(o, mesh, pm, HM::IO::default_hanging_bulge); break;
       }
       if(!ok) { std::cerr << "hexmesh: cannot write " << o << "\n"; return OUTPUT; }
     }
