@@ -22,12 +22,18 @@
 //    between chains form surface regions, each projected only onto the input faces between the
 //    same curves, so a vertex near a sharp edge does not jump to the other side.
 // 4. Optimisation: every free vertex (interior, inner buffer vertex, box-plane vertex in its
-//    plane, surface vertex on its region, curve vertex on its curve; corners stay) is moved to
-//    the best of a few candidates (Laplacian target, steps along the numerical gradient of the
-//    minimum scaled Jacobian of the cells it affects, hanging nodes following their masters) if
-//    that raises the minimum scaled Jacobian of those cells: validity first (untangling), then
-//    quality. Surface vertices never leave the surface unless a cell stays inverted; then the
-//    vertex is released into the volume and reported ("unreached").
+//    plane, surface vertex on its region, curve vertex on its curve; corners stay) moves, hanging
+//    nodes following their masters. Sweeps alternate between a Gauss-Seidel step on a smooth
+//    shape energy (Knupp's corner condition numbers with Escobar's regularised determinant, so it
+//    also untangles) and a move to the best of a few candidates that raises the minimum quality
+//    (min of the scaled Jacobian and OpenFOAM's face-pyramid quality) of the cells it affects. No
+//    move takes a cell below min(its quality, keep_quality): validity first, then quality.
+// 5. Cells still inverted: their curve vertices, then corners, go back to the surface; then their
+//    surface vertices are released into the volume (restarting from the staircase's extrusion).
+//    Fidelity before quality: afterwards each of them goes back to its surface, curve or corner
+//    as far as its cells allow; those still off the surface are reported ("unreached"). A buffer
+//    cell that stays below min_valid_quality, or at a face OpenFOAM would find too skewed, is
+//    removed (the staircase face under it is the boundary there).
 
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Status.h>
@@ -774,6 +780,19 @@ private:
           cnbrs[pc[i + 1]].push_back(pc[i]);
         }
       }
+    }
+    // a top face with a curve vertex between two other snapped corners of it is flat where the
+    // three are collinear (a path back in a face it left, or two curves side by side): that
+    // vertex goes back to the surface, the curve crosses the face
+    auto snapped = [&](Index v) { return kind[v] == CURVE || kind[v] == CORNER; };
+    for(std::size_t f : top_faces) {
+      const auto& q = m.boundary_faces[f].vertices;
+      for(int k = 0; k < 4; ++k)
+        if(kind[q[k]] == CURVE && snapped(q[(k + 1) % 4]) && snapped(q[(k + 3) % 4])) {
+          kind[q[k]] = SURFACE;
+          --rep.curve_vertices;
+          break;
+        }
     }
     update_hanging();
   }
