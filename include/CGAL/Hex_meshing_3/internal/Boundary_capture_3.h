@@ -835,7 +835,9 @@ private:
       if(v == to) break;
       auto pv = pred.find(v);
       for(Index w : snbrs[v]) {
-        if(w != to && (used[w] || kind[w] == CORNER || kind[w] == CAP || kind[w] == HANGING)) continue;
+        // another curve's corner is passed only if it lies on this curve (a T-junction)
+        if(w != to && (used[w] || kind[w] == CAP || kind[w] == HANGING ||
+                       (kind[w] == CORNER && !(dcurve(w) < 1e-3 * hloc[w])))) continue;
         // two edges of one top face in a row would put three of its corners on the curve (a flat
         // face): allowed only at a high price
         const bool turns = pv != pred.end() && share_top_face(pv->second, v, w);
