@@ -1200,10 +1200,13 @@ void test_body_fitted()
         if(i < pm.neighbour.size()) closure[pm.neighbour[i]][a] -= g.face_areas[i][a];
       }
     double qmin = 1;
+    std::size_t poor = 0;   // cells below 0.1
     for(std::size_t c = 0; c < m.number_of_cells(); ++c) {
       std::array<Point_3, 8> p;
       for(int k = 0; k < 8; ++k) p[k] = m.points[m.hexahedra[c][k]];
-      qmin = (std::min)(qmin, HM::scaled_jacobian(p));
+      const double q = HM::scaled_jacobian(p);
+      qmin = (std::min)(qmin, q);
+      if(q < 0.1) ++poor;
       assert(g.cell_volumes[c] > 0);
       for(int a = 0; a < 3; ++a) assert(std::abs(closure[c][a]) < 1e-9 * ext * ext);
     }
@@ -1217,8 +1220,12 @@ void test_body_fitted()
               << " / " << ff.mesh_to_input / s << ", corners " << ff.max_corner_distance / s << " (x surface size); "
               << st.curves_captured << " curves captured, " << st.curves_missed << " missed, "
               << st.unreached_vertices.size() << " vertices off the surface\n";
-    // the capture removes buffer cells below 0.02 and releases few vertices
+    // the capture removes buffer cells below 0.02 and releases few vertices; cells below 0.1 are
+    // rare (fandisk: 1 of 3799 buffer cells; 25 before the shape energy)
     assert(qmin >= 0.02 && st.unreached_vertices.size() <= 20);
+    assert(poor * 200 <= st.buffer_cells);
+    if(std::string(file) == "data/fandisk.off")   // 31 of its 35 curves; its worst corner 0.38 x surface size
+      assert(st.curves_captured >= 31 && ff.max_corner_distance <= 0.5 * s);
     assert(bf.mean_face_distance <= 0.15 * s);
     if(std::string(file) == "data/cube.off") {
       // every vertex reached the cube; its corners and edges are in the mesh exactly
