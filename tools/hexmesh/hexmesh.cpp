@@ -499,7 +499,11 @@ int main(int argc, char** argv)
         case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, q.scaled_jacobian); break;
         case Output_kind::MSH: ok = HM::IO::write_MSH(o, mesh); break;
         case Output_kind::MEDIT: ok = HM::IO::write_Medit(o, mesh); break;
-        case Output_kind::OPENFOAM: ok = HM::IO::write_OpenFOAM(o, mesh, pm, HM::IO::default_hanging_bulge); break;
+        // the points with bulged hanging nodes are already in `bulged` (if there are any)
+        case Output_kind::OPENFOAM:
+          ok = bulged.points.empty() ? HM::IO::write_OpenFOAM(o, mesh, pm, HM::IO::default_hanging_bulge)
+                                     : HM::IO::write_OpenFOAM(o, bulged, pm, 0.0);
+          break;
       }
       if(!ok) { std::cerr << "hexmesh: cannot write " << o << "\n"; return OUTPUT; }
     }

@@ -9,10 +9,12 @@
 // Patch types come from the mesh (box faces `patch`, surface parts `wall` unless changed).
 
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
+#include <CGAL/Hex_meshing_3/internal/vertex_cells.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -50,15 +52,8 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
   for(std::size_t v = 0; v < x.size(); ++v)
     x[v] = {{CGAL::to_double(mesh.points[v].x()), CGAL::to_double(mesh.points[v].y()), CGAL::to_double(mesh.points[v].z())}};
   if(!(bulge > 0) || mesh.hanging_nodes.empty()) return x;
-  // the cells at each vertex
-  std::vector<std::size_t> start(x.size() + 1, 0), cells;
-  for(const auto& h : mesh.hexahedra) for(auto v : h) ++start[std::size_t(v) + 1];
-  for(std::size_t v = 0; v < x.size(); ++v) start[v + 1] += start[v];
-  cells.resize(start.back());
-  {
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for(std::size_t c = 0; c < mesh.hexahedra.size(); ++c) for(auto v : mesh.hexahedra[c]) cells[fill[std::size_t(v)]++] = c;
-  }
+  std::vector<std::uint32_t> start, cells;   // the cells at each vertex
+  CGAL::Hex_meshing_3::internal::vertex_cells(mesh, x.size(), start, cells);
   const double lo[3] = {mesh.box.xmin(), mesh.box.ymin(), mesh.box.zmin()};
   const double hi[3] = {mesh.box.xmax(), mesh.box.ymax(), mesh.box.zmax()};
   std::vector<std::array<double, 3>> moved = x;

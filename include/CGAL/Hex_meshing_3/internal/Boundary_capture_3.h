@@ -39,6 +39,7 @@
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
+#include <CGAL/Hex_meshing_3/internal/vertex_cells.h>
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -97,24 +98,8 @@ inline double hex_pyramid_quality(const Vec3* x)
 // cube, growing without bound as a corner flattens. The determinant is Escobar et al.'s
 // regularised one, (det + sqrt(det^2 + 4 delta^2)) / 2, so an inverted corner has a finite (very
 // large) energy that decreases towards validity: one objective untangles and smooths.
-inline double hex_shape_energy(const Vec3* x, double delta2)
-{
-  static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
-  double e = 0;
-  for(int i = 0; i < 8; ++i) {
-    const Vec3 a = sub(x[nb[i][0]], x[i]), b = sub(x[nb[i][1]], x[i]), c = sub(x[nb[i][2]], x[i]);
-    const Vec3 bc = cross(b, c), ca = cross(c, a), ab = cross(a, b);
-    const double det = dot(a, bc);
-    const double hd = 0.5 * (det + std::sqrt(det * det + 4 * delta2));
-    const double f2 = dot(a, a) + dot(b, b) + dot(c, c);
-    const double g2 = dot(bc, bc) + dot(ca, ca) + dot(ab, ab);
-    e += f2 * g2 / (9 * hd * hd);
-  }
-  return e / 8;
-}
-
-// hex_shape_energy() and its gradient with respect to each corner (added to g[0..7])
-inline double hex_shape_energy_gradient(const Vec3* x, double delta2, Vec3* g)
+// If `g` is given, the energy's gradient with respect to each corner is added to g[0..7].
+inline double hex_shape_energy(const Vec3* x, double delta2, Vec3* g = nullptr)
 {
   static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
   double e = 0;
@@ -129,7 +114,7 @@ inline double hex_shape_energy_gradient(const Vec3* x, double delta2, Vec3* g)
     const double g2 = dot(bc, bc) + dot(ca, ca) + dot(ab, ab);
     const double k = 1.0 / (72 * hd * hd);   // the mean over 8 corners of f2 g2 / (9 hd^2)
     e += f2 * g2 * k;
-    if(!(sq > 0)) continue;
+    if(!g || !(sq > 0)) continue;
     const double ab_ = dot(a, b), bc_ = dot(b, c), ca_ = dot(c, a);
     // d/dv [f2 g2 / hd^2] = (2 v g2 + f2 dg2/dv) / hd^2 - 2 f2 g2 / (hd^2 sq) ddet/dv
     const Vec3 dga = add(mul(a, 2 * (cc + bb)), add(mul(c, -2 * ca_), mul(b, -2 * ab_)));
@@ -147,22 +132,6 @@ inline double hex_shape_energy_gradient(const Vec3* x, double delta2, Vec3* g)
   return e;
 }
 
-// The cells having each vertex as a corner: those of vertex v are cells[start[v] .. start[v+1])
-template <typename HexMesh>
-void vertex_cells(const HexMesh& m, std::size_t nv, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& cells)
-{
-  start.assign(nv + 1, 0);
-  for(const auto& h : m.hexahedra) for(std::uint32_t v : h) ++start[v + 1];
-  for(std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  cells.resize(start[nv]);
-  std::vector<std::uint32_t> pos(start.begin(), start.end() - 1);
-  for(std::uint32_t c = 0; c < m.hexahedra.size(); ++c) for(std::uint32_t v : m.hexahedra[c]) cells[pos[v]++] = c;
-}
-
-// The cells of a staircase mesh that must go before a buffer layer can be inserted: cells with a
-// corner on a surface face (patch >= 6) closer to the surface than `gap` x the smallest edge of the
-// cells at that corner, and cells at a vertex where the boundary is not a single disk (two cells
-// touching along an edge or at a corner only, seen from the region or from outside).
 template <typename HexMesh, typename Domain>
 std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Domain& domain, double gap,
                                                      std::size_t* too_close = nullptr,
@@ -827,34 +796,33 @@ private:
     std::priority_queue<QE, std::vector<QE>, std::greater<QE>> q;
     dist[from] = 0;
     q.push({0, from});
-    auto dcurve = [&](Index v) { return norm(sub(closest_on_curve(P[v], curve), P[v])); };
     while(!q.empty()) {
       const auto [dv, v] = q.top();
       q.pop();
       if(dv > dist[v]) continue;
       if(v == to) break;
       auto pv = pred.find(v);
+      const double dvc = norm(sub(closest_on_curve(P[v], curve), P[v]));
       for(Index w : snbrs[v]) {
-        // another curve's corner is passed only if it lies on this curve (a T-junction)
-        if(w != to && (used[w] || kind[w] == CAP || kind[w] == HANGING ||
-                       (kind[w] == CORNER && !(dcurve(w) < 1e-3 * hloc[w])))) continue;
+        if(w != to && (used[w] || kind[w] == CAP || kind[w] == HANGING)) continue;
         // two edges of one top face in a row would put three of its corners on the curve (a flat
         // face): allowed only at a high price
         const bool turns = pv != pred.end() && share_top_face(pv->second, v, w);
         if(turns && strict) continue;
         const double turn = turns ? opt.turn_penalty : 0.0;
-        // stay near the curve: at most a few cells away and within the ends' neighbourhood
-        const double dw = dcurve(w);
+        // stay near the curve: at most a few cells away
+        const Vec3 cp = closest_on_curve(P[w], curve);
+        const double dw = norm(sub(cp, P[w]));
         if(dw > 3 * hloc[w]) continue;
+        // another curve's corner is passed only if it lies on this curve (a T-junction)
+        if(w != to && kind[w] == CORNER && !(dw < 1e-3 * hloc[w])) continue;
         // a vertex whose inner vertex does not see its curve point in front of its staircase faces
         // would make flat buffer cells once snapped: allowed, at a price
         double penalty = 0;
-        if(w != to) {
-          const Vec3 cp = closest_on_curve(P[w], curve);
+        if(w != to)
           for(const Vec3& n : fnormals[w]) if(dot(sub(cp, P[inner_of[w]]), n) <= 0) penalty = 10;
-        }
         const double l = norm(sub(P[w], P[v]));
-        const double cost = dv + l * (1 + penalty + turn + opt.snap_weight * (dcurve(v) + dw) / hloc[w]);
+        const double cost = dv + l * (1 + penalty + turn + opt.snap_weight * (dvc + dw) / hloc[w]);
         auto it = dist.find(w);
         if(it == dist.end() || cost < it->second) { dist[w] = cost; pred[w] = v; q.push({cost, w}); }
       }
@@ -1105,7 +1073,7 @@ private:
     for(Index c : cells) {
       Vec3 x[8], G[8];
       for(int k = 0; k < 8; ++k) { x[k] = P[m.hexahedra[c][k]]; G[k] = Vec3{{0, 0, 0}}; }
-      e0 += hex_shape_energy_gradient(x, delta2, G);
+      e0 += hex_shape_energy(x, delta2, G);
       for(int k = 0; k < 8; ++k) {
         const Index u = m.hexahedra[c][k];
         if(u == v) g = add(g, G[k]);
@@ -1163,19 +1131,24 @@ private:
     };
     // Sweeps alternate between the shape energy (smooth: every cell of a vertex counts, so
     // neighbouring vertices improve a cell together; it spreads crowded vertices) and the worst
-    // cells' minimum (what the energy averages away). Either alone stalls much earlier.
-    for(int pass = 0, idle = 0; pass < opt.passes && !cancelled; ++pass) {
-      for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
-      if(pass < 3)   // the first sweeps set every inner buffer vertex under its twin
-        for(Index v : inner) add_vertex(v);
-      rep.optimisation_passes = std::size_t(pass + 1);
-      if(work.empty()) break;
-      const std::size_t nwork = work.size();
-      const std::size_t moved = sweep(pass % 2 == 0);
-      if(!visitor.go_further(double(pass + 1) / opt.passes)) { cancelled = true; break; }
-      idle = moved * 200 < nwork ? idle + 1 : 0;   // fewer than 0.5 % of the vertices still move
-      if(idle == 2) break;
-    }
+    // cells' minimum (what the energy averages away). Either alone stalls much earlier. The main
+    // sweeps also set every inner buffer vertex under its twin (the first three) and report progress.
+    auto smooth = [&](int passes, bool main_sweeps) {
+      for(int pass = 0, idle = 0; pass < passes && !cancelled; ++pass) {
+        for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
+        if(main_sweeps) {
+          if(pass < 3) for(Index v : inner) add_vertex(v);
+          rep.optimisation_passes = std::size_t(pass + 1);
+        }
+        if(work.empty()) break;
+        const std::size_t nwork = work.size();
+        const std::size_t moved = sweep(pass % 2 == 0);
+        if(main_sweeps && !visitor.go_further(double(pass + 1) / passes)) { cancelled = true; break; }
+        idle = moved * 200 < nwork ? idle + 1 : 0;   // fewer than 0.5 % of the vertices still move
+        if(idle == 2) break;
+      }
+    };
+    smooth(opt.passes, true);
     auto untangle = [&]() {
       for(int pass = 0; pass < opt.passes; ++pass) {
         for(Index c : low) if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) add_vertex(v);
@@ -1230,17 +1203,8 @@ private:
     }
     // the cells around released vertices were only untangled: smooth them (and whatever else is
     // still below the target) once more
-    auto smooth = [&](int passes) {
-      for(int pass = 0, idle = 0; pass < passes && !cancelled; ++pass) {
-        for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
-        if(work.empty()) break;
-        const std::size_t nwork = work.size();
-        idle = sweep(pass % 2 == 0) * 200 < nwork ? idle + 1 : 0;
-        if(idle == 2) break;
-      }
-    };
     if(!any_released && unsnapped_list.empty()) return;
-    smooth(opt.final_passes);
+    smooth(opt.final_passes, false);
     // Fidelity before quality: vertices that lost their constraint go back as far as their cells
     // allow (none may fall below min(its quality, keep_quality)) - released vertices towards the
     // surface, unsnapped ones towards their curve or corner; one that reaches it takes its kind
@@ -1293,7 +1257,7 @@ private:
       std::sort(low.begin(), low.end());
       low.erase(std::unique(low.begin(), low.end()), low.end());
       if(moved == 0) break;
-      smooth(2);
+      smooth(2, false);
     }
     for(Index v : released_list) if(kind[v] == RELEASED) rep.unreached_vertices.push_back(P[v]);
   }
