@@ -40,6 +40,11 @@ struct Cell_3
   bool is_cut = false;          ///< the cell's hull meets the surface (exact test)
   bool meets_feature = false;   ///< the cell meets a feature edge of the domain (exact test; only
                                 ///< computed when the criteria have a feature size)
+  /// how much the surface bends inside the cell: an estimate, in degrees, of the largest angle
+  /// between the normals of the input triangles that meet it (exact test for "meet"), at least
+  /// half the true largest angle and never more; 0 for an uncut cell. Only computed when the
+  /// criteria have a curvature size and the cell is larger than it.
+  double normal_spread = 0;
 
   /// length of the longest of the 12 edges
   FT size() const
@@ -74,6 +79,9 @@ struct Cell_3
  * - cell size: every cell's size is at most `cell_size` (a number or a field of the position);
  * - surface size: every cell cut by the surface has size at most `surface_size`;
  * - feature size: every cell meeting a feature edge of the domain has size at most `feature_size`;
+ * - curvature size: every cut cell in which the surface normals differ by more than
+ *   `curvature_angle` degrees has size at most `curvature_size` (snappyHexMesh's second surface
+ *   level with its `resolveFeatureAngle`): curved parts, sharp edges and corners get finer cells;
  * - refinement boxes: every cell overlapping a box (with positive volume) has size at most the
  *   box's size;
  * - user criteria added by `add_criterion()`.
@@ -118,6 +126,13 @@ public:
   /// cells meeting a feature edge of the domain get size at most `size` (0: no such criterion);
   /// the domain's feature edges are set by `Surface_domain_3::set_feature_edges()`
   void set_feature_size(FT size) { m_feature_size = size; }
+  /// cut cells in which the surface normals differ by more than `angle` degrees get size at most
+  /// `size` (0: no such criterion)
+  void set_curvature_size(FT size, double angle = 30)
+  {
+    m_curvature_size = size;
+    m_curvature_angle = angle;
+  }
   /// @}
 
   /// \name Access
@@ -128,6 +143,9 @@ public:
   int max_level() const { return m_max_level; }
   /// the size asked along feature edges (0: none)
   FT feature_size() const { return m_feature_size; }
+  /// the size asked where the surface bends by more than `curvature_angle()` in a cell (0: none)
+  FT curvature_size() const { return m_curvature_size; }
+  double curvature_angle() const { return m_curvature_angle; }
   const std::vector<std::pair<Bbox_3, FT>>& refinement_boxes() const { return m_boxes; }
   /// @}
 
@@ -145,6 +163,8 @@ public:
       if(exceeds(s, ss)) return Is_cell_bad(s / ss);
     }
     if(c.meets_feature && m_feature_size > 0 && exceeds(s, m_feature_size)) return Is_cell_bad(s / m_feature_size);
+    if(c.is_cut && m_curvature_size > 0 && c.normal_spread > m_curvature_angle && exceeds(s, m_curvature_size))
+      return Is_cell_bad(s / m_curvature_size);
     if(!m_boxes.empty()) {
       const Bbox_3 b = c.bbox();
       for(const auto& rb : m_boxes)
@@ -172,6 +192,8 @@ private:
   Size_field m_cell_size_field, m_surface_size_field;
   int m_max_level;
   FT m_feature_size = 0;
+  FT m_curvature_size = 0;
+  double m_curvature_angle = 30;
   std::vector<std::pair<Bbox_3, FT>> m_boxes;
   std::vector<std::function<Is_cell_bad(const Cell&)>> m_extra;
 };

@@ -554,6 +554,17 @@ def main():
               f"{stem}: mean distance of boundary faces to the input {fi['mesh_to_input_mean'] / s_:.3f} x surface size <= 0.2 "
               f"(max {fi['mesh_to_input_max'] / s_:.2f}, input->mesh max {fi['input_to_mesh_max'] / s_:.2f}; "
               f"{fi['cap_faces']} cap faces excluded)")
+        # the figures, reported per file (its goals: no face beyond 0.25 x surface size,
+        # feature curves within 0.25 x and corners within 0.1 x both ways)
+        ff = j["feature_fidelity"]
+        sz = lambda x: "inf" if x is None else f"{x / s_:.2f}"
+        print(f"  reported: {stem}: faces beyond 0.25 / 0.5 / 1 x surface size: "
+              f"{fi['faces_beyond_quarter_surface_size']} / {fi['faces_beyond_half_surface_size']} / "
+              f"{fi['faces_beyond_surface_size']} of {fi['surface_faces']}; features input->mesh {sz(ff['input_to_mesh'])}, "
+              f"mesh->input {sz(ff['mesh_to_input'])}, worst corner {sz(ff['max_corner_distance'])} x surface size")
+        check(fi["faces_beyond_surface_size"] <= fi["faces_beyond_half_surface_size"] <= fi["faces_beyond_quarter_surface_size"]
+              <= fi["surface_faces"] and (fi["faces_beyond_quarter_surface_size"] == 0) == (fi["mesh_to_input_max"] <= 0.25 * s_),
+              f"{stem}: the counts of far faces agree with the largest face distance")
         if stem in SAME_TOPOLOGY:
             same = (topo["input"]["components"] == topo["mesh_boundary"]["components"] and
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])

@@ -1172,6 +1172,79 @@ void test_polyhedral_half_splits()
   }
 }
 
+// Curvature refinement: cut cells in which the surface normals differ by more than the angle get
+// the curvature size. On the cube [-1,1]^3 (flat faces, 90 degree edges) the cut cells whose closed
+// box meets an edge see a spread of exactly 90 degrees and those on one face 0; the cut cells at
+// the edges are refined to the curvature size, those on a face away from the edges keep the
+// surface size.
+void test_curvature_refinement()
+{
+  std::cout << "curvature refinement\n";
+  Domain cube("data/cube.off");
+  const CGAL::Bbox_3 box(-1.5, -1.5, -1.5, 1.5, 1.5, 1.5);
+  // what the criteria see: the spread is measured (curvature size set) but never acted on (180)
+  {
+    Criteria criteria(0.5, 0.125);
+    criteria.set_curvature_size(0.0625, 180);
+    std::size_t at_edge = 0, on_face = 0;
+    criteria.add_criterion([&](const HM::Cell_3<K>& c) -> Criteria::Is_cell_bad {
+      if(!c.is_cut) { assert(c.normal_spread == 0); return {}; }
+      const CGAL::Bbox_3 b = c.bbox();
+      int touching = 0;   // box planes x, y, z = +-1 the closed box meets
+      for(int a = 0; a < 3; ++a) touching += (b.min(a) <= 1 && b.max(a) >= 1) + (b.min(a) <= -1 && b.max(a) >= -1);
+      if(touching >= 2) { ++at_edge; assert(std::abs(c.normal_spread - 90) < 1e-9); }
+      if(touching == 1) { ++on_face; assert(c.normal_spread == 0); }
+      return {};
+    });
+    Mesh m;
+    CGAL::make_hex_mesh_3(cube, criteria, m, HP::body_fitted(false).meshing_box(box));
+    std::cout << "  spreads seen: 90 degrees at " << at_edge << " cut cells at edges, 0 at " << on_face << " on faces\n";
+    assert(at_edge > 0 && on_face > 0);
+  }
+  // the cut cells the criteria accept (the extra criterion is asked only when no built-in one
+  // splits the cell): at the edges they have the curvature size, on a face away from the edges
+  // the surface size; without a curvature size, the surface size everywhere
+  for(int fine = 0; fine < 2; ++fine) {
+    Criteria criteria(0.5, 0.25);
+    if(fine) criteria.set_curvature_size(0.0625, 30);
+    std::size_t at_edge = 0, mid_face = 0;
+    criteria.add_criterion([&](const HM::Cell_3<K>& c) -> Criteria::Is_cell_bad {
+      if(!c.is_cut) return {};
+      const CGAL::Bbox_3 b = c.bbox();
+      int touching = 0;
+      double far = 2;   // distance of the box to the nearest plane x, y, z = +-1 it does not meet
+      for(int a = 0; a < 3; ++a) {
+        const bool lo = b.min(a) <= -1 && b.max(a) >= -1, hi = b.min(a) <= 1 && b.max(a) >= 1;
+        touching += lo + hi;
+        if(!lo && !hi) far = (std::min)(far, (std::min)(1 - b.max(a), b.min(a) + 1));
+      }
+      const double e = b.xmax() - b.xmin();
+      if(touching >= 2) { ++at_edge; assert(std::abs(e - (fine ? 0.0625 : 0.25)) < 1e-12); }
+      if(touching == 1 && far >= 0.6) { ++mid_face; assert(std::abs(e - 0.25) < 1e-12); }
+      return {};
+    });
+    Mesh m;
+    CGAL::make_hex_mesh_3(cube, criteria, m, HP::body_fitted(false).meshing_box(box));
+    std::cout << "  " << (fine ? "curvature size 0.0625: " : "no curvature size: ") << at_edge
+              << " cut cells at the edges accepted at " << (fine ? 0.0625 : 0.25) << ", " << mid_face
+              << " on the faces away from them at 0.25\n";
+    assert(at_edge > 0 && mid_face > 0);
+  }
+  // a smooth organic surface: more cells than without, fewer than with the fine size everywhere
+  Domain eight("data/eight.off");
+  std::size_t n[3];
+  for(int k = 0; k < 3; ++k) {
+    Criteria criteria(0.1, k == 2 ? 0.0125 : 0.025);
+    if(k == 1) criteria.set_curvature_size(0.0125, 30);
+    Mesh m;
+    CGAL::make_hex_mesh_3(eight, criteria, m, HP::body_fitted(false));
+    n[k] = m.number_of_cells();
+  }
+  std::cout << "  eight: " << n[0] << " cells at 0.025, " << n[1] << " with 0.0125 where it bends by 30 degrees, " << n[2]
+            << " at 0.0125\n";
+  assert(n[0] < n[1] && n[1] < n[2]);
+}
+
 // Body-fitted boundary: buffer layer, projection, feature snapping, untangling. Validity is
 // asserted independently (Verdict scaled Jacobian of every cell, closed polyhedral cells of
 // positive volume); the cube's boundary must lie on the cube, with its 8 corners and 12 edges.
@@ -1298,6 +1371,7 @@ int main(int argc, char** argv)
                        "data/fandisk.off", "data/t20_part.off"})
     test_winding_number(f);
   test_meshing();
+  test_curvature_refinement();
   test_readers_and_errors();
   test_dirty_input();
   test_features();

@@ -239,6 +239,10 @@ def main():
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--region", "seed:0.0368,0.0509,-0.0874"], 2, "inside a body", "seed inside")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--size", "-1"], 1, "--size: must be a positive number", "negative size")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--box", "1,1,1,0,0,0"], 1, "min must be below", "inverted box")
+    expect([eight, "-o", os.path.join(e, "x.vtu"), "--surface-size", "0.02:0.04"], 1, "HFINE must not exceed H",
+           "curvature size above the surface size")
+    expect([eight, "-o", os.path.join(e, "x.vtu"), "--surface-size", "0.02:x"], 1, "'x' is not a number",
+           "curvature size not a number")
     expect([eight, "-o", os.path.join(e, "x.xyz")], 1, "unknown output format", "unknown output format")
     check(not os.path.exists(os.path.join(e, "x.vtu")), "nothing written on errors")
     # refuses to overwrite

@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -193,7 +194,8 @@ int main(int argc, char** argv)
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
   std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, feature_files;
   double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0;
-  std::string box_s, region = "inside";
+  double curvature_size = 0, curvature_angle = 30;
+  std::string box_s, region = "inside", surface_size_s;
   int max_level = 12;
   std::size_t max_cells = 0;
   bool force = false, quiet = false, strict = false, staircase = false;
@@ -201,7 +203,12 @@ int main(int argc, char** argv)
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
                                          "(repeatable)")->required();
   auto* size_opt = app.add_option("--size", size, "largest cell edge (default: the largest side of the input's bounding box / 10)");
-  auto* ssize_opt = app.add_option("--surface-size", surface_size, "largest edge of cells cut by the surface (default: size / 4)");
+  auto* ssize_opt = app.add_option("--surface-size", surface_size_s, "H[:HFINE] - largest edge of cells cut by the surface "
+                                                                    "(default: size / 4); HFINE: of those where the surface "
+                                                                    "normals differ by more than --curvature-angle");
+  app.add_option("--curvature-angle", curvature_angle, "cut cells in which the surface normals differ by more than this many "
+                                                       "degrees get the HFINE of --surface-size (default 30)")
+      ->check(CLI::Range(0.0, 180.0));
   auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
   app.add_option("--feature-angle", feature_angle, "an edge whose face normals differ by at least this many degrees is a "
                                                    "feature (default 30)")->check(CLI::Range(0.0, 180.0));
@@ -238,8 +245,16 @@ int main(int argc, char** argv)
   try {
     app.parse(argc, argv);
     if(size_opt->count() && !(size > 0 && std::isfinite(size))) throw CLI::ValidationError("--size", "must be a positive number");
-    if(ssize_opt->count() && !(surface_size > 0 && std::isfinite(surface_size)))
-      throw CLI::ValidationError("--surface-size", "must be a positive number");
+    if(ssize_opt->count()) {
+      const auto colon = surface_size_s.find(':');
+      surface_size = parse_numbers(surface_size_s.substr(0, colon), 1, "--surface-size")[0];
+      if(colon != std::string::npos) curvature_size = parse_numbers(surface_size_s.substr(colon + 1), 1, "--surface-size")[0];
+      if(!(surface_size > 0 && std::isfinite(surface_size)) ||
+         (colon != std::string::npos && !(curvature_size > 0 && std::isfinite(curvature_size))))
+        throw CLI::ValidationError("--surface-size", "expected H or H:HFINE with positive numbers, got '" + surface_size_s + "'");
+      if(curvature_size > surface_size)
+        throw CLI::ValidationError("--surface-size", "HFINE must not exceed H in '" + surface_size_s + "'");
+    }
     if(scale_opt->count() && !(scale > 0 && std::isfinite(scale))) throw CLI::ValidationError("--scale", "must be a positive number");
     if(fsize_opt->count() && !(feature_size > 0 && std::isfinite(feature_size)))
       throw CLI::ValidationError("--feature-size", "must be a positive number");
@@ -369,6 +384,7 @@ int main(int argc, char** argv)
     if(surface_size <= 0) surface_size = size / 4;
     Criteria criteria(size, surface_size, max_level);
     if(feature_size > 0) criteria.set_feature_size(feature_size);
+    if(curvature_size > 0) criteria.set_curvature_size(curvature_size, curvature_angle);
     for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
 
     Mesh mesh;
@@ -524,7 +540,8 @@ int main(int argc, char** argv)
     if(!reports.empty()) {
       nlohmann::ordered_json j;
       j["inputs"] = inputs;
-      j["options"] = {{"size", size}, {"surface_size", surface_size}, {"feature_angle", feature_angle},
+      j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
+                      {"curvature_angle", curvature_angle}, {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},
@@ -566,7 +583,34 @@ int main(int argc, char** argv)
                          {"mesh_to_input_mean", fid.mean_face_distance}, {"mesh_to_input_worst_at", loc(fid.worst_face_location)},
                          {"samples", fid.samples}, {"input_to_mesh_max", fid.max_sample_distance},
                          {"input_to_mesh_mean", fid.mean_sample_distance}, {"input_to_mesh_worst_at", loc(fid.worst_sample_location)},
-                         {"surface_size", surface_size}, {"seconds", since(tf)}};
+                         {"surface_size", surface_size}};
+        // faces farther than 1/4, 1/2 and 1 surface size (the bound is 1/4), and the
+        // farthest of them
+        std::vector<std::pair<double, std::array<double, 3>>> far;
+        std::size_t beyond[3] = {0, 0, 0};
+        for(const auto& fd : fid.face_distances) {
+          const double r = fd.first / surface_size;
+          for(int k = 0; k < 3; ++k) if(r > (k == 0 ? 0.25 : k == 1 ? 0.5 : 1.0)) ++beyond[k];
+          if(r > 0.25) far.push_back(fd);
+        }
+        std::stable_sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        nlohmann::ordered_json jf = nlohmann::ordered_json::array();
+        for(std::size_t i = 0; i < far.size() && i < 50; ++i) jf.push_back({{"distance", far[i].first}, {"at", loc(far[i].second)}});
+        j["fidelity"]["faces_beyond_quarter_surface_size"] = beyond[0];
+        j["fidelity"]["faces_beyond_half_surface_size"] = beyond[1];
+        j["fidelity"]["faces_beyond_surface_size"] = beyond[2];
+        j["fidelity"]["farthest_faces"] = jf;
+        // the feature curves: input sharp, open and non-manifold edges against the mesh
+        // boundary's edges of the same dihedral angle, both ways; input corners against the
+        // nearest boundary vertex
+        const HM::Feature_fidelity ff = HM::feature_fidelity(mesh, domain, features, feature_angle);
+        auto finite = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(nullptr); };
+        j["feature_fidelity"] = {{"input_feature_edges", ff.input_feature_edges}, {"mesh_feature_edges", ff.mesh_feature_edges},
+                                 {"input_to_mesh", finite(ff.input_to_mesh)}, {"input_to_mesh_worst_at", loc(ff.worst_input_location)},
+                                 {"mesh_to_input", finite(ff.mesh_to_input)}, {"mesh_to_input_worst_at", loc(ff.worst_mesh_location)},
+                                 {"corners", ff.corners}, {"max_corner_distance", finite(ff.max_corner_distance)},
+                                 {"worst_corner_at", loc(ff.worst_corner_location)}, {"sample_spacing", ff.sample_spacing}};
+        j["fidelity"]["seconds"] = since(tf);
         auto tj = [](const HM::Surface_topology& t) {
           return nlohmann::ordered_json{{"components", t.components}, {"euler_characteristic", t.euler_characteristic},
                                         {"vertices", t.vertices}, {"edges", t.edges}, {"faces", t.faces},

@@ -51,6 +51,10 @@ public:
   /// positive, the mesher sets `Cell::meets_feature`
   FT feature_size() const;
 
+  /// the size asked for cut cells in which the surface bends (0: none); when positive, the mesher
+  /// sets `Cell::normal_spread` for the cut cells larger than it
+  FT curvature_size() const;
+
   /// @}
 
   /// \name Operations

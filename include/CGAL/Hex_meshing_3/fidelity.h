@@ -54,6 +54,9 @@ struct Boundary_fidelity
   std::array<double, 3> worst_sample_location = {{0, 0, 0}};   ///< where the input is farthest
   std::size_t cap_faces = 0;         ///< faces capping holes of the input (not counted in the face distances)
   double cap_area = 0;               ///< their area
+  /// mesh -> input, per surface face (caps left out, in the order of `mesh.boundary_faces`): the
+  /// largest distance of its corners and centre, and the point where it is reached
+  std::vector<std::pair<double, std::array<double, 3>>> face_distances;
 };
 
 /*!
@@ -119,15 +122,15 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     }
     ++r.surface_faces;
     double worst = 0;
+    const Point_3* at = &centre;
     const Point_3* pts[5] = {&a, &b, &c, &d, &centre};
     for(const Point_3* p : pts) {
       const double dist = std::sqrt(CGAL::to_double(domain.squared_distance(*p)));
-      if(dist > worst) worst = dist;
-      if(dist > r.max_face_distance) {
-        r.max_face_distance = dist;
-        r.worst_face_location = {{CGAL::to_double(p->x()), CGAL::to_double(p->y()), CGAL::to_double(p->z())}};
-      }
+      if(dist > worst) { worst = dist; at = p; }
     }
+    const std::array<double, 3> where = {{CGAL::to_double(at->x()), CGAL::to_double(at->y()), CGAL::to_double(at->z())}};
+    if(worst > r.max_face_distance) { r.max_face_distance = worst; r.worst_face_location = where; }
+    r.face_distances.push_back({worst, where});
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);

@@ -161,6 +161,7 @@ public:
   void init_box()
   {
     m_use_features = m_domain.has_feature_edges() && m_criteria.feature_size() > 0;
+    m_curvature_size = CGAL::to_double(m_criteria.curvature_size());
     m_use_lines = m_use_features && !m_domain.feature_segments().empty();
     const FT size = m_criteria.initial_size();
     if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
@@ -290,7 +291,39 @@ public:
                              hex_corner_offsets()[k][2] ? hi[2] : lo[2]);
     c.is_cut = (nd.flags & CUT) != 0;
     c.meets_feature = (nd.flags & FEATURE) != 0;
+    if(c.is_cut && m_curvature_size > 0 &&
+       (std::max)({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) > m_curvature_size * (1 + 1e-9))
+      c.normal_spread = normal_spread(nd);
     return c;
+  }
+
+  // An estimate of the largest angle (degrees) between the unit normals of the triangles meeting
+  // the cell (exact test): the largest angle to the first normal, then to the normal farthest
+  // from it; by the triangle inequality on the sphere, at least half the true largest angle.
+  double normal_spread(const Node& nd) const
+  {
+    if(nd.list == 0) return 0;
+    const Bbox_3 b = node_bbox(nd);
+    std::vector<std::array<double, 3>> n;
+    for(std::uint32_t t : m_lists[nd.list]) {
+      if(!m_domain.do_intersect(b, t)) continue;
+      const auto& tr = m_domain.triangle(t);
+      const auto v = CGAL::cross_product(tr[1] - tr[0], tr[2] - tr[0]);
+      const double x = CGAL::to_double(v.x()), y = CGAL::to_double(v.y()), z = CGAL::to_double(v.z());
+      const double l = std::sqrt(x * x + y * y + z * z);
+      if(l > 0) n.push_back({{x / l, y / l, z / l}});
+    }
+    if(n.size() < 2) return 0;
+    double worst = 1;
+    std::size_t far = 0;
+    for(int pass = 0; pass < 2; ++pass) {
+      const std::array<double, 3> r = n[far];
+      for(std::size_t i = 0; i < n.size(); ++i) {
+        const double c = r[0] * n[i][0] + r[1] * n[i][1] + r[2] * n[i][2];
+        if(c < worst) { worst = c; far = i; }
+      }
+    }
+    return std::acos((std::max)(-1.0, (std::min)(1.0, worst))) * 180.0 / CGAL_PI;
   }
 
   std::uint32_t root_index(std::uint32_t x, std::uint32_t y, std::uint32_t z) const
@@ -890,6 +923,7 @@ private:
   std::vector<int> m_component;
   std::vector<Region_leak> m_leaks;
   bool m_use_features = false, m_use_lines = false;
+  double m_curvature_size = 0;   // the criteria's curvature size (0: normal spreads not computed)
   int m_near_layers = 0;
   std::size_t m_leaves = 0;
   Statistics m_stats;
