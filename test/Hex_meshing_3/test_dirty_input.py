@@ -565,6 +565,10 @@ def main():
         check(fi["faces_beyond_surface_size"] <= fi["faces_beyond_half_surface_size"] <= fi["faces_beyond_quarter_surface_size"]
               <= fi["surface_faces"] and (fi["faces_beyond_quarter_surface_size"] == 0) == (fi["mesh_to_input_max"] <= 0.25 * s_),
               f"{stem}: the counts of far faces agree with the largest face distance")
+        b = j["boundary"]
+        check(len(b["missed_curves_first_100"]) == min(100, b["curves_missed"]) and
+              len(b["curve_turns_first_100"]) == min(100, b["curve_turns"]),
+              f"{stem}: the report locates the {b['curves_missed']} missed curves and the {b['curve_turns']} chain turns")
         if stem in SAME_TOPOLOGY:
             same = (topo["input"]["components"] == topo["mesh_boundary"]["components"] and
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])

@@ -411,7 +411,7 @@ int main(int argc, char** argv)
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
                 << stats.buffer_cells << " buffer cells, " << stats.surface_vertices << " vertices on the surface ("
                 << stats.curve_vertices << " on " << stats.curves_captured << " feature curves, " << stats.corner_vertices
-                << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curve_gaps << " curve ends short of their corner, " << stats.curves_missed
+                << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curve_gaps << " curve ends short of their corner, " << stats.curve_turns.size() << " chain turns left off their curve, " << stats.curves_missed
                 << " curves missed, " << stats.unreached_vertices.size() << " vertices could not reach the surface, "
                 << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)\n";
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
@@ -649,6 +649,15 @@ int main(int argc, char** argv)
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
                            {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", un}};
+          nlohmann::ordered_json tu = nlohmann::ordered_json::array();
+          for(std::size_t i = 0; i < stats.curve_turns.size() && i < 100; ++i)
+            tu.push_back({stats.curve_turns[i][0], stats.curve_turns[i][1], stats.curve_turns[i][2]});
+          j["boundary"]["curve_turns"] = stats.curve_turns.size();
+          j["boundary"]["curve_turns_first_100"] = tu;
+          nlohmann::ordered_json mc = nlohmann::ordered_json::array();
+          for(std::size_t i = 0; i < stats.missed_curves.size() && i < 100; ++i)
+            mc.push_back({stats.missed_curves[i][0], stats.missed_curves[i][1], stats.missed_curves[i][2]});
+          j["boundary"]["missed_curves_first_100"] = mc;
         }
         j["grid"] = {{"initial_cells", {stats.initial_cells[0], stats.initial_cells[1], stats.initial_cells[2]}},
                      {"leaf_cells", leaves}, {"cut_leaves", stats.cut_leaves}, {"balance_splits", stats.balance_splits},

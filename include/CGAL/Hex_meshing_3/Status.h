@@ -127,6 +127,11 @@ struct Meshing_statistics
   std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
+  /// where a feature chain turns inside a face (two of its edges in a row): the middle vertex is
+  /// left off the curve, which crosses that face along its diagonal (final positions)
+  std::vector<std::array<double, 3>> curve_turns;
+  /// a point (the middle vertex) of each feature curve no chain was found for
+  std::vector<std::array<double, 3>> missed_curves;
 };
 
 /*!

@@ -663,7 +663,7 @@ private:
         wv.push_back(v);
       }
       if(!ok || wv.size() < 2) {
-        ++rep.curves_missed; continue;
+        ++rep.curves_missed; rep.missed_curves.push_back(pts[pts.size() / 2]); continue;
       }
       // arc length of the curve at its vertices
       std::vector<double> arc{0};
@@ -713,7 +713,7 @@ private:
       }
       if(!ok) {
         for(Index v : marked) used[v] = 0;
-        ++rep.curves_missed; continue;
+        ++rep.curves_missed; rep.missed_curves.push_back(pts[pts.size() / 2]); continue;
       }
       ++rep.curves_captured;
       rep.curve_gaps += gaps;
@@ -736,6 +736,7 @@ private:
         for(std::size_t i = 0; i < pc.size(); ++i) {
           const Index v = pc[i];
           used[v] = 1;
+          if(skip[i]) turn_vertices.push_back(v);
           if(kind[v] != SURFACE || skip[i]) continue;   // corners stay; shared ends are placed once
           kind[v] = CURVE;
           curve_of[v] = int(c);
@@ -1260,6 +1261,7 @@ private:
       smooth(2, false);
     }
     for(Index v : released_list) if(kind[v] == RELEASED) rep.unreached_vertices.push_back(P[v]);
+    for(Index v : turn_vertices) rep.curve_turns.push_back(P[v]);
   }
 
 
@@ -1418,6 +1420,7 @@ private:
   std::vector<std::vector<Segment_3>> curve_segments;
   std::vector<std::unique_ptr<Segment_tree>> curve_trees;
   std::vector<int> curve_of;
+  std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::unordered_set<std::uint64_t> feature_edges;
   std::vector<std::vector<Triangle_3>> region_triangles;
   std::vector<std::unique_ptr<Tree>> region_trees;
