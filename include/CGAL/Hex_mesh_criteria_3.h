@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -45,6 +46,12 @@ struct Cell_3
   /// half the true largest angle and never more; 0 for an uncut cell. Only computed when the
   /// criteria have a curvature size and the cell is larger than it.
   double normal_spread = 0;
+  /// how thin the part or the gap is where the surface crosses the cell: the shortest distance,
+  /// along the normal of an input triangle meeting the cell (both ways, from a point of the
+  /// triangle near the cell's centre), to an opposite-facing part of the surface (normals more
+  /// than 120 degrees apart); infinite if none. Only computed when the criteria refine thin parts
+  /// and the cell is cut and larger than their smallest size.
+  double thickness = std::numeric_limits<double>::infinity();
 
   /// length of the longest of the 12 edges
   FT size() const
@@ -82,6 +89,9 @@ struct Cell_3
  * - curvature size: every cut cell in which the surface normals differ by more than
  *   `curvature_angle` degrees has size at most `curvature_size` (snappyHexMesh's second surface
  *   level with its `resolveFeatureAngle`): curved parts, sharp edges and corners get finer cells;
+ * - thin parts: every cut cell where the part or the gap is thinner than `thin_part_cells` x the
+ *   cell's size is split, down to `thin_part_min_size` (snappyHexMesh's gap refinement): a plate
+ *   or a slot gets that many cells across, as far as that size allows;
  * - refinement boxes: every cell overlapping a box (with positive volume) has size at most the
  *   box's size;
  * - user criteria added by `add_criterion()`.
@@ -133,6 +143,13 @@ public:
     m_curvature_size = size;
     m_curvature_angle = angle;
   }
+  /// cut cells where the part or the gap is thinner than `cells` x their size are split, down to
+  /// size `min_size` (0 cells: no such criterion)
+  void set_thin_part_refinement(int cells, FT min_size)
+  {
+    m_thin_cells = cells;
+    m_thin_min_size = min_size;
+  }
   /// @}
 
   /// \name Access
@@ -146,6 +163,9 @@ public:
   /// the size asked where the surface bends by more than `curvature_angle()` in a cell (0: none)
   FT curvature_size() const { return m_curvature_size; }
   double curvature_angle() const { return m_curvature_angle; }
+  /// the cells asked across thin parts and gaps (0: none), and the smallest size that asks for
+  int thin_part_cells() const { return m_thin_cells; }
+  FT thin_part_min_size() const { return m_thin_min_size; }
   const std::vector<std::pair<Bbox_3, FT>>& refinement_boxes() const { return m_boxes; }
   /// @}
 
@@ -165,6 +185,8 @@ public:
     if(c.meets_feature && m_feature_size > 0 && exceeds(s, m_feature_size)) return Is_cell_bad(s / m_feature_size);
     if(c.is_cut && m_curvature_size > 0 && c.normal_spread > m_curvature_angle && exceeds(s, m_curvature_size))
       return Is_cell_bad(s / m_curvature_size);
+    if(c.is_cut && m_thin_cells > 0 && exceeds(s, m_thin_min_size) && CGAL::to_double(s) * m_thin_cells > c.thickness)
+      return Is_cell_bad(s * m_thin_cells / FT(c.thickness));
     if(!m_boxes.empty()) {
       const Bbox_3 b = c.bbox();
       for(const auto& rb : m_boxes)
@@ -194,6 +216,8 @@ private:
   FT m_feature_size = 0;
   FT m_curvature_size = 0;
   double m_curvature_angle = 30;
+  int m_thin_cells = 0;
+  FT m_thin_min_size = 0;
   std::vector<std::pair<Bbox_3, FT>> m_boxes;
   std::vector<std::function<Is_cell_bad(const Cell&)>> m_extra;
 };

@@ -122,14 +122,18 @@ def box_with_hole(path):
     write_obj(path, verts, [("shell", faces)])
 
 
-# sizes of the body-fitted runs (default: size = largest extent / 10, surface size = size / 4)
-BODY_FITTED_SIZES = {}
+# sizes of the body-fitted runs (default: size = largest extent / 10, surface size = size / 4);
+# the CAD-like inputs with plates and flanges about two surface cells thick get 5 cells across
+# their thin parts (data/MANIFEST.md)
+THIN = ["--thin-cells", "5"]
+BODY_FITTED_SIZES = {"anchor": THIN, "anchor_dupflip": THIN, "cube_nonmanifold": THIN, "fandisk": THIN,
+                     "fandisk_crack": THIN}
 # clean closed inputs whose boundary keeps the input's topology at those sizes (the others have
-# parts thinner than two surface cells: anchor's, rotor's and the elephant's; see the closing note)
+# parts thinner than two surface cells: rotor's blades, the elephant's trunk and tail)
 # body-fitted meshes that checkMesh -allGeometry finds no concave cell in (the others have a few,
 # at concave features)
 NO_CONCAVE_CELLS = {"cube", "cylinder", "eight", "elephant", "fin_slot", "rotor", "t20_part"}
-SAME_TOPOLOGY = {"cube", "eight", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
+SAME_TOPOLOGY = {"anchor", "cube", "eight", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
 
 
 def main():

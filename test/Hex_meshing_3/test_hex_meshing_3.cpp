@@ -1245,6 +1245,54 @@ void test_curvature_refinement()
   assert(n[0] < n[1] && n[1] < n[2]);
 }
 
+// Thin parts: a plate 0.06 thick, thinner than the surface size. The thickness the criteria see
+// at the cells cut by its large faces is the plate's; refining to 3 cells across gives a staircase
+// inside the plate, without it no cell lies inside.
+void test_thin_part_refinement()
+{
+  std::cout << "thin-part refinement\n";
+  std::ofstream("tmp_plate.off") << "OFF\n8 12 0\n"
+                                    "-0.5 -0.5 -0.03\n0.5 -0.5 -0.03\n0.5 0.5 -0.03\n-0.5 0.5 -0.03\n"
+                                    "-0.5 -0.5 0.03\n0.5 -0.5 0.03\n0.5 0.5 0.03\n-0.5 0.5 0.03\n"
+                                    "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
+                                    "3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+  Domain plate("tmp_plate.off");
+  const CGAL::Bbox_3 box(-0.75, -0.75, -0.52, 0.75, 0.75, 0.48);   // the plate off the grid planes
+  {
+    // measured (cells of 1/32 > 0.001) but never acted on (1 cell across: 1/32 < 0.06)
+    Criteria criteria(0.25, 0.03125);
+    criteria.set_thin_part_refinement(1, 0.001);
+    std::size_t seen = 0;
+    criteria.add_criterion([&](const HM::Cell_3<K>& c) -> Criteria::Is_cell_bad {
+      const CGAL::Bbox_3 b = c.bbox();
+      if(!c.is_cut) { assert(std::isinf(c.thickness)); return {}; }
+      if(b.xmin() > -0.4 && b.xmax() < 0.4 && b.ymin() > -0.4 && b.ymax() < 0.4) {
+        ++seen;
+        assert(std::abs(c.thickness - 0.06) < 1e-9);
+      }
+      return {};
+    });
+    Mesh m;
+    CGAL::make_hex_mesh_3(plate, criteria, m, HP::body_fitted(false).meshing_box(box));
+    std::cout << "  thickness 0.06 seen at " << seen << " cut cells of the large faces\n";
+    assert(seen > 0);
+  }
+  double vol[2] = {0, 0};
+  for(int thin = 0; thin < 2; ++thin) {
+    Criteria criteria(0.25, 0.125);
+    if(thin) criteria.set_thin_part_refinement(3, 0.01);
+    Mesh m;
+    CGAL::make_hex_mesh_3(plate, criteria, m, HP::body_fitted(false).meshing_box(box));
+    for(const auto& c : m.hexahedra)
+      vol[thin] += (m.points[c[6]].x() - m.points[c[0]].x()) * (m.points[c[6]].y() - m.points[c[0]].y()) *
+                   (m.points[c[6]].z() - m.points[c[0]].z());
+    std::cout << "  " << (thin ? "3 cells across, down to 0.01: " : "no thin-part refinement: ") << m.number_of_cells()
+              << " cells, volume " << vol[thin] << " (plate 0.06)\n";
+    if(thin) check_mesh(m, "plate");
+  }
+  assert(vol[0] == 0 && vol[1] > 0.5 * 0.06 && vol[1] < 0.06);
+}
+
 // Body-fitted boundary: buffer layer, projection, feature snapping, untangling. Validity is
 // asserted independently (Verdict scaled Jacobian of every cell, closed polyhedral cells of
 // positive volume); the cube's boundary must lie on the cube, with its 8 corners and 12 edges.
@@ -1372,6 +1420,7 @@ int main(int argc, char** argv)
     test_winding_number(f);
   test_meshing();
   test_curvature_refinement();
+  test_thin_part_refinement();
   test_readers_and_errors();
   test_dirty_input();
   test_features();

@@ -243,6 +243,8 @@ def main():
            "curvature size above the surface size")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--surface-size", "0.02:x"], 1, "'x' is not a number",
            "curvature size not a number")
+    expect([eight, "-o", os.path.join(e, "x.vtu"), "--thin-cells", "3", "--thin-size", "0"], 1,
+           "--thin-size: must be a positive number", "thin size zero")
     expect([eight, "-o", os.path.join(e, "x.xyz")], 1, "unknown output format", "unknown output format")
     check(not os.path.exists(os.path.join(e, "x.vtu")), "nothing written on errors")
     # refuses to overwrite

@@ -194,7 +194,8 @@ int main(int argc, char** argv)
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
   std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, feature_files;
   double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0;
-  double curvature_size = 0, curvature_angle = 30;
+  double curvature_size = 0, curvature_angle = 30, thin_size = 0;
+  int thin_cells = 0;
   std::string box_s, region = "inside", surface_size_s;
   int max_level = 12;
   std::size_t max_cells = 0;
@@ -209,6 +210,11 @@ int main(int argc, char** argv)
   app.add_option("--curvature-angle", curvature_angle, "cut cells in which the surface normals differ by more than this many "
                                                        "degrees get the HFINE of --surface-size (default 30)")
       ->check(CLI::Range(0.0, 180.0));
+  app.add_option("--thin-cells", thin_cells, "cut cells where the part or the gap is thinner than this many cells are "
+                                             "split, down to --thin-size (default 0: no such refinement)")
+      ->check(CLI::Range(0, 64));
+  auto* tsize_opt = app.add_option("--thin-size", thin_size, "smallest cell edge that --thin-cells asks for "
+                                                             "(default: surface size / 4)");
   auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
   app.add_option("--feature-angle", feature_angle, "an edge whose face normals differ by at least this many degrees is a "
                                                    "feature (default 30)")->check(CLI::Range(0.0, 180.0));
@@ -255,6 +261,8 @@ int main(int argc, char** argv)
       if(curvature_size > surface_size)
         throw CLI::ValidationError("--surface-size", "HFINE must not exceed H in '" + surface_size_s + "'");
     }
+    if(tsize_opt->count() && !(thin_size > 0 && std::isfinite(thin_size)))
+      throw CLI::ValidationError("--thin-size", "must be a positive number");
     if(scale_opt->count() && !(scale > 0 && std::isfinite(scale))) throw CLI::ValidationError("--scale", "must be a positive number");
     if(fsize_opt->count() && !(feature_size > 0 && std::isfinite(feature_size)))
       throw CLI::ValidationError("--feature-size", "must be a positive number");
@@ -385,6 +393,8 @@ int main(int argc, char** argv)
     Criteria criteria(size, surface_size, max_level);
     if(feature_size > 0) criteria.set_feature_size(feature_size);
     if(curvature_size > 0) criteria.set_curvature_size(curvature_size, curvature_angle);
+    if(thin_size <= 0) thin_size = surface_size / 4;
+    if(thin_cells > 0) criteria.set_thin_part_refinement(thin_cells, thin_size);
     for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
 
     Mesh mesh;
@@ -541,7 +551,8 @@ int main(int argc, char** argv)
       nlohmann::ordered_json j;
       j["inputs"] = inputs;
       j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
-                      {"curvature_angle", curvature_angle}, {"feature_angle", feature_angle},
+                      {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
+                      {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},

@@ -55,6 +55,11 @@ public:
   /// sets `Cell::normal_spread` for the cut cells larger than it
   FT curvature_size() const;
 
+  /// the cells asked across thin parts and gaps (0: none) and the smallest size that asks for;
+  /// when positive, the mesher sets `Cell::thickness` for the cut cells larger than that size
+  int thin_part_cells() const;
+  FT thin_part_min_size() const;
+
   /// @}
 
   /// \name Operations

@@ -162,6 +162,8 @@ public:
   {
     m_use_features = m_domain.has_feature_edges() && m_criteria.feature_size() > 0;
     m_curvature_size = CGAL::to_double(m_criteria.curvature_size());
+    m_thin_cells = m_criteria.thin_part_cells();
+    m_thin_min_size = CGAL::to_double(m_criteria.thin_part_min_size());
     m_use_lines = m_use_features && !m_domain.feature_segments().empty();
     const FT size = m_criteria.initial_size();
     if(!(size > 0) || !std::isfinite(CGAL::to_double(size)))
@@ -294,7 +296,73 @@ public:
     if(c.is_cut && m_curvature_size > 0 &&
        (std::max)({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) > m_curvature_size * (1 + 1e-9))
       c.normal_spread = normal_spread(nd);
+    if(c.is_cut && m_thin_cells > 0 &&
+       (std::max)({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) > m_thin_min_size * (1 + 1e-9))
+      c.thickness = thickness(nd);
     return c;
+  }
+
+  // The shortest distance, along the normals of (at most 4 of) the triangles meeting the cell,
+  // both ways, to an opposite-facing part of the surface (normals more than 120 degrees apart):
+  // the thickness of a plate or the width of a gap there. Each ray starts from a point strictly
+  // inside its triangle near the cell's centre (the centre's projection on the triangle's plane,
+  // its barycentric coordinates kept >= 1 %), a hair off the triangle.
+  double thickness(const Node& nd) const
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    if(nd.list == 0) return inf;
+    const Bbox_3 b = node_bbox(nd);
+    const double cc[3] = {0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())};
+    const double h = (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
+    typedef std::array<double, 3> V;
+    auto vec = [](const Point_3& p) { return V{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
+    auto unit_normal = [&](std::size_t t, V& n) {
+      const auto& tr = m_domain.triangle(t);
+      const V a = vec(tr[0]), p = vec(tr[1]), q = vec(tr[2]);
+      const V u = {{p[0] - a[0], p[1] - a[1], p[2] - a[2]}}, w = {{q[0] - a[0], q[1] - a[1], q[2] - a[2]}};
+      n = {{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
+      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      if(!(l > 0)) return false;
+      for(double& x : n) x /= l;
+      return true;
+    };
+    double best = inf;
+    int tried = 0;
+    for(std::uint32_t t : m_lists[nd.list]) {
+      if(tried == 4) break;
+      if(!m_domain.do_intersect(b, t)) continue;
+      V n;
+      if(!unit_normal(t, n)) continue;
+      ++tried;
+      const auto& tr = m_domain.triangle(t);
+      const V a = vec(tr[0]), p = vec(tr[1]), q = vec(tr[2]);
+      // barycentric coordinates of the centre's projection, kept inside
+      const V e0 = {{p[0] - a[0], p[1] - a[1], p[2] - a[2]}}, e1 = {{q[0] - a[0], q[1] - a[1], q[2] - a[2]}};
+      const V r = {{cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]}};
+      const double d00 = e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2], d01 = e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2];
+      const double d11 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+      const double d20 = r[0] * e0[0] + r[1] * e0[1] + r[2] * e0[2], d21 = r[0] * e1[0] + r[1] * e1[1] + r[2] * e1[2];
+      const double den = d00 * d11 - d01 * d01;
+      if(!(den > 0)) continue;
+      double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den, u = 1 - v - w;
+      u = (std::max)(u, 0.01); v = (std::max)(v, 0.01); w = (std::max)(w, 0.01);
+      const double sum = u + v + w;
+      u /= sum; v /= sum; w /= sum;
+      const V o = {{u * a[0] + v * p[0] + w * q[0], u * a[1] + v * p[1] + w * q[1], u * a[2] + v * p[2] + w * q[2]}};
+      for(double side : {-1.0, 1.0}) {
+        const double eps = 1e-7 * h;
+        const Point_3 from(o[0] + side * eps * n[0], o[1] + side * eps * n[1], o[2] + side * eps * n[2]);
+        Point_3 hit;
+        if(!m_domain.first_ray_hit(from, typename GT::Vector_3(side * n[0], side * n[1], side * n[2]), hit)) continue;
+        const V x = vec(hit);
+        const double dist = std::sqrt((x[0] - o[0]) * (x[0] - o[0]) + (x[1] - o[1]) * (x[1] - o[1]) + (x[2] - o[2]) * (x[2] - o[2]));
+        if(!(dist > 2 * eps) || dist >= best) continue;
+        V m;
+        if(!unit_normal(m_domain.closest_triangle(hit), m)) continue;
+        if(n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < -0.5) best = dist;
+      }
+    }
+    return best;
   }
 
   // An estimate of the largest angle (degrees) between the unit normals of the triangles meeting
@@ -924,6 +992,8 @@ private:
   std::vector<Region_leak> m_leaks;
   bool m_use_features = false, m_use_lines = false;
   double m_curvature_size = 0;   // the criteria's curvature size (0: normal spreads not computed)
+  int m_thin_cells = 0;          // the criteria's cells across thin parts (0: thicknesses not computed)
+  double m_thin_min_size = 0;
   int m_near_layers = 0;
   std::size_t m_leaves = 0;
   Statistics m_stats;
