@@ -133,12 +133,19 @@ def main():
                     "leaks": [{"cells": l["cells"], "volume": round(l["volume"], 6), "passage": l["passage"]} for l in j["leaks"]],
                 })
                 if "boundary" in j:
-                    line["boundary"] = {k: v for k, v in j["boundary"].items() if k != "unreached_first_100"}
+                    line["boundary"] = {k: v for k, v in j["boundary"].items() if not k.endswith("_first_100")}
                 if "fidelity" in j:
                     f = j["fidelity"]
                     s_ = f["surface_size"]
                     line["fidelity_in_surface_sizes"] = {k: round(f[k] / s_, 3) for k in
                                                          ("mesh_to_input_max", "mesh_to_input_mean", "input_to_mesh_max", "input_to_mesh_mean")}
+                    line["faces_beyond"] = {k: f[f"faces_beyond_{k}_surface_size"] for k in ("quarter", "half")}
+                    line["faces_beyond"]["one"] = f["faces_beyond_surface_size"]
+                    line["surface_faces"] = f["surface_faces"]
+                if "feature_fidelity" in j:
+                    ff, s_ = j["feature_fidelity"], j["fidelity"]["surface_size"]
+                    line["features_in_surface_sizes"] = {k: (None if ff[k] is None else round(ff[k] / s_, 3)) for k in
+                                                         ("input_to_mesh", "mesh_to_input", "max_corner_distance")}
                 if "topology" in j:
                     t = j["topology"]
                     line["topology"] = {w: (t[w]["components"], t[w]["euler_characteristic"]) for w in ("input", "mesh_boundary")}
