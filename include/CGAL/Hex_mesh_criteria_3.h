@@ -8,6 +8,7 @@
 // isotropic here (1 -> 8); a size s is realised as (initial edge) / 2^k <= s.
 
 #include <CGAL/Bbox_3.h>
+#include <CGAL/assertions.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 
 #include <algorithm>
@@ -137,7 +138,8 @@ public:
   /// the domain's feature edges are set by `Surface_domain_3::set_feature_edges()`
   void set_feature_size(FT size) { m_feature_size = size; }
   /// cut cells in which the surface normals differ by more than `angle` degrees get size at most
-  /// `size` (0: no such criterion)
+  /// `size` (0: no such criterion); the angle is estimated (`Cell_3::normal_spread`): a cell is
+  /// sure to be refined when its normals differ by more than twice `angle`
   void set_curvature_size(FT size, double angle = 30)
   {
     m_curvature_size = size;
@@ -145,8 +147,10 @@ public:
   }
   /// cut cells where the part or the gap is thinner than `cells` x their size are split, down to
   /// size `min_size` (0 cells: no such criterion)
+  /// \pre `cells == 0 || min_size > 0`
   void set_thin_part_refinement(int cells, FT min_size)
   {
+    CGAL_precondition(cells == 0 || min_size > 0);
     m_thin_cells = cells;
     m_thin_min_size = min_size;
   }
@@ -185,7 +189,8 @@ public:
     if(c.meets_feature && m_feature_size > 0 && exceeds(s, m_feature_size)) return Is_cell_bad(s / m_feature_size);
     if(c.is_cut && m_curvature_size > 0 && c.normal_spread > m_curvature_angle && exceeds(s, m_curvature_size))
       return Is_cell_bad(s / m_curvature_size);
-    if(c.is_cut && m_thin_cells > 0 && exceeds(s, m_thin_min_size) && CGAL::to_double(s) * m_thin_cells > c.thickness)
+    if(c.is_cut && m_thin_cells > 0 && c.thickness > 0 && exceeds(s, m_thin_min_size) &&
+       CGAL::to_double(s) * m_thin_cells > c.thickness)
       return Is_cell_bad(s * m_thin_cells / FT(c.thickness));
     if(!m_boxes.empty()) {
       const Bbox_3 b = c.bbox();

@@ -100,8 +100,9 @@ public:
   /// the squared distance from `p` to the surface
   Geom_traits::FT squared_distance(const Point_3& p) const;
 
-  /// the first point where the ray from `p` along `d` meets the surface; `false` if none
-  bool first_ray_hit(const Point_3& p, const Geom_traits::Vector_3& d, Point_3& hit) const;
+  /// the first point where the ray from `p` along `d` meets the surface; `false` if none; if
+  /// `triangle` is given, it receives the index of the triangle met there (thin-part refinement)
+  bool first_ray_hit(const Point_3& p, const Geom_traits::Vector_3& d, Point_3& hit, std::size_t* triangle = nullptr) const;
 
   /// triangle `i`, its corner indices into `points()`, and the points: the surface regions
   /// between feature curves are built from them

@@ -275,11 +275,14 @@ public:
   /// the first point where the ray from `p` in direction `d` meets the surface, if any (the
   /// intersection point is constructed in floating point; a ray along a triangle gives the
   /// segment's first end)
-  bool first_ray_hit(const Point_3& p, const typename GeomTraits::Vector_3& d, Point_3& hit) const
+  /// (and, if `triangle` is given, the index of the triangle met there)
+  bool first_ray_hit(const Point_3& p, const typename GeomTraits::Vector_3& d, Point_3& hit,
+                     std::size_t* triangle = nullptr) const
   {
     const typename GeomTraits::Ray_3 ray(p, d);
     const auto r = tree().first_intersection(ray);
     if(!r) return false;
+    if(triangle) *triangle = std::size_t(r->second - m_triangles.begin());
     if(const Point_3* q = boost::get<Point_3>(&r->first)) { hit = *q; return true; }
     if(const typename GeomTraits::Segment_3* s = boost::get<typename GeomTraits::Segment_3>(&r->first)) {
       hit = CGAL::squared_distance(p, s->source()) < CGAL::squared_distance(p, s->target()) ? s->source() : s->target();

@@ -293,105 +293,124 @@ public:
                              hex_corner_offsets()[k][2] ? hi[2] : lo[2]);
     c.is_cut = (nd.flags & CUT) != 0;
     c.meets_feature = (nd.flags & FEATURE) != 0;
-    if(c.is_cut && m_curvature_size > 0 &&
-       (std::max)({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) > m_curvature_size * (1 + 1e-9))
-      c.normal_spread = normal_spread(nd);
-    if(c.is_cut && m_thin_cells > 0 &&
-       (std::max)({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) > m_thin_min_size * (1 + 1e-9))
-      c.thickness = thickness(nd);
     return c;
   }
 
-  // The shortest distance, along the normals of (at most 4 of) the triangles meeting the cell,
-  // both ways, to an opposite-facing part of the surface (normals more than 120 degrees apart):
-  // the thickness of a plate or the width of a gap there. Each ray starts from a point strictly
-  // inside its triangle near the cell's centre (the centre's projection on the triangle's plane,
-  // its barycentric coordinates kept >= 1 %), a hair off the triangle.
-  double thickness(const Node& nd) const
+  // what the curvature and thin-part criteria need of a cut cell larger than their sizes (the
+  // refinement asks; other uses of `make_cell()` do not pay for it)
+  void measure(const Node& nd, Cell& c) const
   {
-    const double inf = std::numeric_limits<double>::infinity();
-    if(nd.list == 0) return inf;
+    if(!c.is_cut || (m_curvature_size <= 0 && m_thin_cells <= 0)) return;
     const Bbox_3 b = node_bbox(nd);
-    const double cc[3] = {0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())};
     const double h = (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
-    typedef std::array<double, 3> V;
-    auto vec = [](const Point_3& p) { return V{{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
-    auto unit_normal = [&](std::size_t t, V& n) {
-      const auto& tr = m_domain.triangle(t);
-      const V a = vec(tr[0]), p = vec(tr[1]), q = vec(tr[2]);
-      const V u = {{p[0] - a[0], p[1] - a[1], p[2] - a[2]}}, w = {{q[0] - a[0], q[1] - a[1], q[2] - a[2]}};
-      n = {{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]}};
-      const double l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      if(!(l > 0)) return false;
-      for(double& x : n) x /= l;
-      return true;
-    };
-    double best = inf;
-    int tried = 0;
-    for(std::uint32_t t : m_lists[nd.list]) {
-      if(tried == 4) break;
-      if(!m_domain.do_intersect(b, t)) continue;
-      V n;
-      if(!unit_normal(t, n)) continue;
-      ++tried;
-      const auto& tr = m_domain.triangle(t);
-      const V a = vec(tr[0]), p = vec(tr[1]), q = vec(tr[2]);
-      // barycentric coordinates of the centre's projection, kept inside
-      const V e0 = {{p[0] - a[0], p[1] - a[1], p[2] - a[2]}}, e1 = {{q[0] - a[0], q[1] - a[1], q[2] - a[2]}};
-      const V r = {{cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]}};
-      const double d00 = e0[0] * e0[0] + e0[1] * e0[1] + e0[2] * e0[2], d01 = e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2];
-      const double d11 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
-      const double d20 = r[0] * e0[0] + r[1] * e0[1] + r[2] * e0[2], d21 = r[0] * e1[0] + r[1] * e1[1] + r[2] * e1[2];
-      const double den = d00 * d11 - d01 * d01;
-      if(!(den > 0)) continue;
-      double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den, u = 1 - v - w;
-      u = (std::max)(u, 0.01); v = (std::max)(v, 0.01); w = (std::max)(w, 0.01);
-      const double sum = u + v + w;
-      u /= sum; v /= sum; w /= sum;
-      const V o = {{u * a[0] + v * p[0] + w * q[0], u * a[1] + v * p[1] + w * q[1], u * a[2] + v * p[2] + w * q[2]}};
-      for(double side : {-1.0, 1.0}) {
-        const double eps = 1e-7 * h;
-        const Point_3 from(o[0] + side * eps * n[0], o[1] + side * eps * n[1], o[2] + side * eps * n[2]);
-        Point_3 hit;
-        if(!m_domain.first_ray_hit(from, typename GT::Vector_3(side * n[0], side * n[1], side * n[2]), hit)) continue;
-        const V x = vec(hit);
-        const double dist = std::sqrt((x[0] - o[0]) * (x[0] - o[0]) + (x[1] - o[1]) * (x[1] - o[1]) + (x[2] - o[2]) * (x[2] - o[2]));
-        if(!(dist > 2 * eps) || dist >= best) continue;
-        V m;
-        if(!unit_normal(m_domain.closest_triangle(hit), m)) continue;
-        if(n[0] * m[0] + n[1] * m[1] + n[2] * m[2] < -0.5) best = dist;
-      }
-    }
-    return best;
+    if(m_curvature_size > 0 && h > m_curvature_size * (1 + 1e-9)) c.normal_spread = normal_spread(nd);
+    if(m_thin_cells > 0 && h > m_thin_min_size * (1 + 1e-9)) c.thickness = thickness(nd);
+  }
+
+  // the unit normal of triangle t (false if it is degenerate in double precision)
+  bool unit_normal(std::size_t t, Vec3& n) const
+  {
+    const auto& tr = m_domain.triangle(t);
+    const Vec3 a = vec(tr[0]);
+    n = cross(sub(vec(tr[1]), a), sub(vec(tr[2]), a));
+    const double l = norm(n);
+    if(!(l > 0)) return false;
+    n = mul(n, 1.0 / l);
+    return true;
   }
 
   // An estimate of the largest angle (degrees) between the unit normals of the triangles meeting
   // the cell (exact test): the largest angle to the first normal, then to the normal farthest
-  // from it; by the triangle inequality on the sphere, at least half the true largest angle.
+  // from it; by the triangle inequality on the sphere, at least half the true largest angle and
+  // never more.
   double normal_spread(const Node& nd) const
   {
     if(nd.list == 0) return 0;
     const Bbox_3 b = node_bbox(nd);
-    std::vector<std::array<double, 3>> n;
+    std::vector<Vec3> n;
     for(std::uint32_t t : m_lists[nd.list]) {
-      if(!m_domain.do_intersect(b, t)) continue;
-      const auto& tr = m_domain.triangle(t);
-      const auto v = CGAL::cross_product(tr[1] - tr[0], tr[2] - tr[0]);
-      const double x = CGAL::to_double(v.x()), y = CGAL::to_double(v.y()), z = CGAL::to_double(v.z());
-      const double l = std::sqrt(x * x + y * y + z * z);
-      if(l > 0) n.push_back({{x / l, y / l, z / l}});
+      Vec3 u;
+      if(m_domain.do_intersect(b, t) && unit_normal(t, u)) n.push_back(u);
     }
     if(n.size() < 2) return 0;
     double worst = 1;
     std::size_t far = 0;
     for(int pass = 0; pass < 2; ++pass) {
-      const std::array<double, 3> r = n[far];
+      const Vec3 r = n[far];
       for(std::size_t i = 0; i < n.size(); ++i) {
-        const double c = r[0] * n[i][0] + r[1] * n[i][1] + r[2] * n[i][2];
+        const double c = dot(r, n[i]);
         if(c < worst) { worst = c; far = i; }
       }
     }
     return std::acos((std::max)(-1.0, (std::min)(1.0, worst))) * 180.0 / CGAL_PI;
+  }
+
+  // the point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5)
+  static Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
+  {
+    const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if(d1 <= 0 && d2 <= 0) return a;
+    const Vec3 bp = sub(p, b);
+    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if(d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if(vc <= 0 && d1 >= 0 && d3 <= 0) return add(a, mul(ab, d1 / (d1 - d3)));
+    const Vec3 cp = sub(p, c);
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if(d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if(vb <= 0 && d2 >= 0 && d6 <= 0) return add(a, mul(ac, d2 / (d2 - d6)));
+    const double va = d3 * d6 - d5 * d4;
+    if(va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return add(b, mul(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    const double den = 1 / (va + vb + vc);
+    return add(a, add(mul(ab, vb * den), mul(ac, vc * den)));
+  }
+
+  // The shortest distance, along the normals of (at most 4 of) the triangles meeting the cell,
+  // both ways, to an opposite-facing part of the surface (normals more than 120 degrees apart):
+  // the thickness of a plate or the width of a gap there. Each ray starts from the triangle's
+  // point closest to the cell's centre, pulled 1 % towards the triangle's centroid (strictly
+  // inside it), a hair off the triangle; hits on parts that do not face it (a side wall) are
+  // passed through, up to 8 of them.
+  double thickness(const Node& nd) const
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    if(nd.list == 0) return inf;
+    const Bbox_3 b = node_bbox(nd);
+    const Vec3 centre = {{0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())}};
+    const double h = (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
+    const double eps = 1e-7 * h;
+    double best = inf;
+    int tried = 0;
+    for(std::uint32_t t : m_lists[nd.list]) {
+      if(tried == 4) break;
+      Vec3 n;
+      if(!m_domain.do_intersect(b, t) || !unit_normal(t, n)) continue;
+      ++tried;
+      const auto& tr = m_domain.triangle(t);
+      const Vec3 p0 = vec(tr[0]), p1 = vec(tr[1]), p2 = vec(tr[2]);
+      const Vec3 g = mul(add(add(p0, p1), p2), 1.0 / 3);
+      const Vec3 q = closest_on_triangle(centre, p0, p1, p2);
+      const Vec3 o = add(q, mul(sub(g, q), 0.01));
+      for(double side : {-1.0, 1.0}) {
+        const Vec3 dir = mul(n, side);
+        Vec3 from = add(o, mul(dir, eps));
+        for(int k = 0; k < 8; ++k) {
+          Point_3 hit;
+          std::size_t ht = 0;
+          if(!m_domain.first_ray_hit(Point_3(from[0], from[1], from[2]), typename GT::Vector_3(dir[0], dir[1], dir[2]), hit, &ht))
+            break;
+          const Vec3 x = vec(hit);
+          const double dist = dot(sub(x, o), dir);
+          if(dist >= best) break;
+          Vec3 m;
+          if(ht != t && dist > 2 * eps && unit_normal(ht, m) && dot(n, m) < -0.5) { best = dist; break; }
+          from = add(x, mul(dir, eps));   // not facing this triangle: go on past it
+        }
+      }
+    }
+    return best;
   }
 
   std::uint32_t root_index(std::uint32_t x, std::uint32_t y, std::uint32_t z) const
@@ -469,7 +488,9 @@ public:
       for(std::size_t i = 0; i < nodes.size(); ++i) {
         const Node& nd = m_nodes[nodes[i]];
         if(!nd.is_leaf()) continue;
-        if(m_criteria(make_cell(nd))) bad.push_back(nodes[i]);
+        Cell c = make_cell(nd);
+        measure(nd, c);
+        if(m_criteria(c)) bad.push_back(nodes[i]);
         if((i & 0xFFFF) == 0xFFFF && !visitor.go_further(double(l) / max_level)) return Status::CANCELED;
       }
       if(bad.empty()) break;
