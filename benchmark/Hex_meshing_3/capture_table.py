@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""The body-fitted boundary's figures on every surface of the test data, one line each.
+
+Runs hexmesh (VTU output only: the quality is measured on the exact points) with the given extra
+options on every test/Hex_meshing_3/data/*.off, two at a time, and prints: cells, min scaled
+Jacobian, cells below 0.3, max non-orthogonality (degrees), surface faces farther than 1/4, 1/2
+and 1 surface size from the input and the farthest (x surface size), the input's farthest sampled
+point from the mesh, the feature fidelity both ways and the worst corner (x surface size), feature
+curves missed, buffer cells removed, vertices that could not reach the surface, total seconds.
+
+Usage: benchmark/Hex_meshing_3/capture_table.py [--hexmesh PATH] [--keep DIR] [-- hexmesh options...]
+e.g.   benchmark/Hex_meshing_3/capture_table.py -- --thin-cells 5
+"""
+import argparse
+import concurrent.futures
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+DATA = os.path.join(ROOT, "test", "Hex_meshing_3", "data")
+
+
+def main():
+    argv = sys.argv[1:]
+    extra = argv[argv.index("--") + 1:] if "--" in argv else []
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--hexmesh", default=os.path.join(ROOT, "build", "tools", "hexmesh", "hexmesh"))
+    ap.add_argument("--keep", help="directory for the meshes and reports (default: a temporary one)")
+    args = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
+    work = args.keep or tempfile.mkdtemp(prefix="capture_table_")
+    os.makedirs(work, exist_ok=True)
+
+    def one(name):
+        stem = name[:-4]
+        rep = os.path.join(work, stem + ".json")
+        r = subprocess.run([args.hexmesh, os.path.join(DATA, name), "-o", os.path.join(work, stem + ".vtu"),
+                            "--report", rep, "--force", "-q"] + extra, capture_output=True, text=True)
+        return stem, (json.load(open(rep)) if r.returncode == 0 else None), r.stderr[-300:]
+
+    names = sorted(n for n in os.listdir(DATA) if n.endswith(".off"))
+    with concurrent.futures.ThreadPoolExecutor(2) as ex:
+        results = list(ex.map(one, names))
+    print(f"hexmesh options: {' '.join(extra) or '(defaults)'}; distances in surface sizes")
+    print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
+          f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} {'sec':>5s}")
+    for stem, j, err in results:
+        if j is None:
+            print(f"{stem:20s} FAILED: {err.strip()}")
+            continue
+        s, q, fi, ff, b = j["fidelity"]["surface_size"], j["quality"], j["fidelity"], j["feature_fidelity"], j.get("boundary", {})
+        h = q["histograms"]["scaled_jacobian"]   # 20 bins from -1 to 1: bins 10..12 are [0, 0.3)
+        rel = lambda x: float("inf") if x is None else x / s
+        print(f"{stem:20s} {j['counts']['cells']:6d} {q['scaled_jacobian']['min']:6.3f} {sum(h['counts'][10:13]):4d} "
+              f"{q['non_orthogonality']['max']:5.1f} {fi['faces_beyond_quarter_surface_size']:5d} "
+              f"{fi['faces_beyond_half_surface_size']:4d} {fi['faces_beyond_surface_size']:4d} {fi['mesh_to_input_max'] / s:5.2f} "
+              f"{fi['input_to_mesh_max'] / s:5.2f} {rel(ff['input_to_mesh']):6.2f} {rel(ff['mesh_to_input']):6.2f} "
+              f"{rel(ff['max_corner_distance']):5.2f} {b.get('curves_missed', -1):4d} {b.get('removed_buffer_cells', -1):4d} "
+              f"{b.get('unreached_vertices', -1):4d} {j['seconds']['total']:5.2f}")
+
+
+if __name__ == "__main__":
+    main()
