@@ -1201,6 +1201,31 @@ void test_curvature_refinement()
     std::cout << "  spreads seen: 90 degrees at " << at_edge << " cut cells at edges, 0 at " << on_face << " on faces\n";
     assert(at_edge > 0 && on_face > 0);
   }
+  // the estimate is not just the spread around the first normal: a roof of three strips whose
+  // middle one (horizontal, listed first, so its normal comes first in every cell it meets) has
+  // the others at 50 degrees on either side; the cell meeting all three sees 100 degrees (a
+  // spread around the first normal only would be 50)
+  {
+    const double c = std::cos(50 * CGAL_PI / 180), sn = std::sin(50 * CGAL_PI / 180);
+    std::vector<Point_3> pts;
+    for(double y : {-1.0, 1.0})
+      for(const auto& xz : std::vector<std::array<double, 2>>{{{-0.2 - 0.8 * c, 0.8 * sn}}, {{-0.2, 0}}, {{0.2, 0}}, {{0.2 + 0.8 * c, 0.8 * sn}}})
+        pts.emplace_back(xz[0], y, xz[1] + 0.1);   // off the grid plane z = 0
+    // point k at y = -1 is k, at y = 1 is k + 4; the middle strip first, then the sides
+    std::vector<std::array<std::uint32_t, 3>> tris = {{{1, 2, 6}}, {{1, 6, 5}}, {{0, 1, 5}}, {{0, 5, 4}}, {{2, 3, 7}}, {{2, 7, 6}}};
+    Domain roof(pts, tris);
+    Criteria criteria(0.5, 0.5);   // cells of 0.5 are asked; the one over x in [-0.25, 0.25] meets all three strips
+    criteria.set_curvature_size(0.01, 180);
+    double widest = 0;
+    criteria.add_criterion([&](const HM::Cell_3<K>& cell) -> Criteria::Is_cell_bad {
+      widest = (std::max)(widest, cell.normal_spread);
+      return {};
+    });
+    Mesh m;
+    CGAL::make_hex_mesh_3(roof, criteria, m, HP::body_fitted(false).meshing_box(CGAL::Bbox_3(-1.25, -1.25, -1, 1.25, 1.25, 1.5)));
+    std::cout << "  roof of three strips at -50, 0, 50 degrees: widest spread seen " << widest << " degrees\n";
+    assert(std::abs(widest - 100) < 1e-6);
+  }
   // the cut cells the criteria accept (the extra criterion is asked only when no built-in one
   // splits the cell): at the edges they have the curvature size, on a face away from the edges
   // the surface size; without a curvature size, the surface size everywhere
