@@ -345,28 +345,6 @@ public:
     return std::acos((std::max)(-1.0, (std::min)(1.0, worst))) * 180.0 / CGAL_PI;
   }
 
-  // the point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5)
-  static Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
-  {
-    const Vec3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-    const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if(d1 <= 0 && d2 <= 0) return a;
-    const Vec3 bp = sub(p, b);
-    const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if(d3 >= 0 && d4 <= d3) return b;
-    const double vc = d1 * d4 - d3 * d2;
-    if(vc <= 0 && d1 >= 0 && d3 <= 0) return add(a, mul(ab, d1 / (d1 - d3)));
-    const Vec3 cp = sub(p, c);
-    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if(d6 >= 0 && d5 <= d6) return c;
-    const double vb = d5 * d2 - d1 * d6;
-    if(vb <= 0 && d2 >= 0 && d6 <= 0) return add(a, mul(ac, d2 / (d2 - d6)));
-    const double va = d3 * d6 - d5 * d4;
-    if(va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return add(b, mul(sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
-    const double den = 1 / (va + vb + vc);
-    return add(a, add(mul(ab, vb * den), mul(ac, vc * den)));
-  }
-
   // The shortest distance, along the normals of (at most 4 of) the triangles meeting the cell,
   // both ways, to an opposite-facing part of the surface (normals more than 120 degrees apart):
   // the thickness of a plate or the width of a gap there. Each ray starts from the triangle's
@@ -389,9 +367,8 @@ public:
       if(!m_domain.do_intersect(b, t) || !unit_normal(t, n)) continue;
       ++tried;
       const auto& tr = m_domain.triangle(t);
-      const Vec3 p0 = vec(tr[0]), p1 = vec(tr[1]), p2 = vec(tr[2]);
-      const Vec3 g = mul(add(add(p0, p1), p2), 1.0 / 3);
-      const Vec3 q = closest_on_triangle(centre, p0, p1, p2);
+      const Vec3 g = mul(add(add(vec(tr[0]), vec(tr[1])), vec(tr[2])), 1.0 / 3);
+      const Vec3 q = vec(GT().construct_projected_point_3_object()(tr, Point_3(centre[0], centre[1], centre[2])));
       const Vec3 o = add(q, mul(sub(g, q), 0.01));
       for(double side : {-1.0, 1.0}) {
         const Vec3 dir = mul(n, side);
