@@ -300,11 +300,20 @@ public:
   // refinement asks; other uses of `make_cell()` do not pay for it)
   void measure(const Node& nd, Cell& c) const
   {
-    if(!c.is_cut || (m_curvature_size <= 0 && m_thin_cells <= 0)) return;
+    if(!c.is_cut || nd.list == 0 || (m_curvature_size <= 0 && m_thin_cells <= 0)) return;
     const Bbox_3 b = node_bbox(nd);
     const double h = (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
-    if(m_curvature_size > 0 && h > m_curvature_size * (1 + 1e-9)) c.normal_spread = normal_spread(nd);
-    if(m_thin_cells > 0 && h > m_thin_min_size * (1 + 1e-9)) c.thickness = thickness(nd);
+    const bool spread = m_curvature_size > 0 && h > m_curvature_size * (1 + 1e-9);
+    const bool thin = m_thin_cells > 0 && h > m_thin_min_size * (1 + 1e-9);
+    if(!spread && !thin) return;
+    // the triangles meeting the cell (exact test) and their unit normals, in list order, once
+    std::vector<std::pair<std::uint32_t, Vec3>> meets;
+    for(std::uint32_t t : m_lists[nd.list]) {
+      Vec3 u;
+      if(m_domain.do_intersect(b, t) && unit_normal(t, u)) meets.push_back({t, u});
+    }
+    if(spread) c.normal_spread = normal_spread(meets);
+    if(thin) c.thickness = thickness(b, meets);
   }
 
   // the unit normal of triangle t (false if it is degenerate in double precision)
@@ -323,22 +332,15 @@ public:
   // the cell (exact test): the largest angle to the first normal, then to the normal farthest
   // from it; by the triangle inequality on the sphere, at least half the true largest angle and
   // never more.
-  double normal_spread(const Node& nd) const
+  static double normal_spread(const std::vector<std::pair<std::uint32_t, Vec3>>& n)
   {
-    if(nd.list == 0) return 0;
-    const Bbox_3 b = node_bbox(nd);
-    std::vector<Vec3> n;
-    for(std::uint32_t t : m_lists[nd.list]) {
-      Vec3 u;
-      if(m_domain.do_intersect(b, t) && unit_normal(t, u)) n.push_back(u);
-    }
     if(n.size() < 2) return 0;
     double worst = 1;
     std::size_t far = 0;
     for(int pass = 0; pass < 2; ++pass) {
-      const Vec3 r = n[far];
+      const Vec3 r = n[far].second;
       for(std::size_t i = 0; i < n.size(); ++i) {
-        const double c = dot(r, n[i]);
+        const double c = dot(r, n[i].second);
         if(c < worst) { worst = c; far = i; }
       }
     }
@@ -351,21 +353,16 @@ public:
   // point closest to the cell's centre, pulled 1 % towards the triangle's centroid (strictly
   // inside it), a hair off the triangle; hits on parts that do not face it (a side wall) are
   // passed through, up to 8 of them.
-  double thickness(const Node& nd) const
+  double thickness(const Bbox_3& b, const std::vector<std::pair<std::uint32_t, Vec3>>& meets) const
   {
     const double inf = std::numeric_limits<double>::infinity();
-    if(nd.list == 0) return inf;
-    const Bbox_3 b = node_bbox(nd);
     const Vec3 centre = {{0.5 * (b.xmin() + b.xmax()), 0.5 * (b.ymin() + b.ymax()), 0.5 * (b.zmin() + b.zmax())}};
     const double h = (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
     const double eps = 1e-7 * h;
     double best = inf;
-    int tried = 0;
-    for(std::uint32_t t : m_lists[nd.list]) {
-      if(tried == 4) break;
-      Vec3 n;
-      if(!m_domain.do_intersect(b, t) || !unit_normal(t, n)) continue;
-      ++tried;
+    for(std::size_t i = 0; i < meets.size() && i < 4; ++i) {
+      const std::uint32_t t = meets[i].first;
+      const Vec3& n = meets[i].second;
       const auto& tr = m_domain.triangle(t);
       const Vec3 g = mul(add(add(vec(tr[0]), vec(tr[1])), vec(tr[2])), 1.0 / 3);
       const Vec3 q = vec(GT().construct_projected_point_3_object()(tr, Point_3(centre[0], centre[1], centre[2])));
