@@ -6,6 +6,7 @@
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
+#include <CGAL/Hex_meshing_3/IO/write_OpenFOAM.h>
 #include <CGAL/Hex_meshing_3/Feature_curves_3.h>
 #include <CGAL/Hex_meshing_3/fidelity.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
@@ -1169,6 +1170,62 @@ void test_polyhedral_half_splits()
     try { HM::Polyhedral_mesh_3 bad; bad.build(broken); } catch(const std::logic_error& e) { what = e.what(); }
     assert(what.find("not a boundary face") != std::string::npos);
     std::cout << "  half of a coarse face facing no cell: std::logic_error as expected (" << what << ")\n";
+  }
+  {
+    // OpenFOAM's concave cells and the bulge of the hanging nodes written for it. A = [0,2]^3 has
+    // its face x = 2 split into quarters by the four cells B = [2,3]x[j,j+1]x[k,k+1]: the quarters
+    // are coplanar, so A is concave for OpenFOAM (and only A: the B are cubes)
+    std::vector<std::array<double, 6>> boxes = {{{0, 0, 0, 2, 2, 2}}};
+    for(double y : {0.0, 1.0})
+      for(double z : {0.0, 1.0}) boxes.push_back({{2, y, z, 3, y + 1, z + 1}});
+    Mesh m = make(boxes, {});
+    assert(m.hanging_nodes.size() == 5);
+    HM::Polyhedral_mesh_3 pm;
+    pm.build(m);
+    auto concave = [&](const auto& points) {
+      HM::OpenFOAM_geometry g;
+      g.compute(points, pm);
+      return HM::concave_cells(pm, g);
+    };
+    assert(concave(m.points) == std::vector<char>({1, 0, 0, 0, 0}));
+    assert(HM::compute_quality(m, pm).number_of_concave_cells() == 1);
+    std::size_t n = 99;
+    auto x = HM::IO::internal::foam_points(m, 0.01, &pm, 0.2, &n);   // a 1 % roof is enough here
+    assert(n == 0 && concave(x) == std::vector<char>(5, 0));
+    // a warped face: A's corners (2,0,0) and (2,2,2) pushed to x = 2.3 (and the hanging nodes
+    // back at the centres of their masters) make a saddle that the 1 % roof leaves concave; the
+    // adaptive bulge raises the node inside the mesh (the face centre) until A is convex, the
+    // nodes on the boundary keep 1 %, and no cell falls below its scaled Jacobian
+    for(auto& p : m.points)
+      if(p == Point_3(2, 0, 0) || p == Point_3(2, 2, 2)) p = Point_3(2.3, p.y(), p.z());
+    for(const auto& h : m.hanging_nodes) {
+      double c[3] = {0, 0, 0};
+      for(int i = 0; i < h.number_of_masters; ++i) {
+        const Point_3& q = m.points[h.masters[std::size_t(i)]];
+        c[0] += q.x() / h.number_of_masters; c[1] += q.y() / h.number_of_masters; c[2] += q.z() / h.number_of_masters;
+      }
+      m.points[h.vertex] = Point_3(c[0], c[1], c[2]);
+    }
+    const auto uniform = HM::IO::internal::foam_points(m, 0.01);
+    assert(concave(uniform)[0] == 1);
+    x = HM::IO::internal::foam_points(m, 0.01, &pm, 0.2, &n);
+    assert(n == 0 && concave(x) == std::vector<char>(5, 0));
+    const HM::Mesh_quality q0 = HM::compute_quality(m, pm);
+    Mesh bulged = m;
+    for(std::size_t v = 0; v < x.size(); ++v) bulged.points[v] = Point_3(x[v][0], x[v][1], x[v][2]);
+    const HM::Mesh_quality q1 = HM::compute_quality(bulged, pm);
+    for(std::size_t c = 0; c < 5; ++c) assert(q1.scaled_jacobian[c] >= (std::min)(q0.scaled_jacobian[c], 0.3) - 1e-12);
+    double centre_rise = 0;
+    for(const auto& h : m.hanging_nodes) {
+      const std::uint32_t v = h.vertex;
+      const double d = std::sqrt(CGAL::to_double(CGAL::squared_distance(m.points[v], Point_3(x[v][0], x[v][1], x[v][2]))));
+      const double du = std::sqrt(CGAL::to_double(CGAL::squared_distance(m.points[v], Point_3(uniform[v][0], uniform[v][1], uniform[v][2]))));
+      if(h.number_of_masters == 2) assert(std::abs(d - du) < 1e-12);   // on the boundary: as the uniform 1 %
+      else centre_rise = d / du;
+    }
+    assert(centre_rise > 1.4);
+    std::cout << "  concave cells as OpenFOAM counts them: a face split into coplanar quarters (1 cell); a 1 % "
+                 "roof makes it convex; a saddle needs the face centre raised " << centre_rise << " x as much\n";
   }
 }
 

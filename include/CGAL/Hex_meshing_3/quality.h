@@ -41,6 +41,7 @@ inline Vec3 cross(const Vec3& a, const Vec3& b)
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 template <typename P> Vec3 vec(const P& p)
 { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; }
+inline Vec3 vec(const Vec3& p) { return p; }
 } // namespace internal
 
 namespace internal {
@@ -156,6 +157,63 @@ struct OpenFOAM_geometry
 
 /*!
  * \ingroup PkgHexMeshing3Quality
+ * \brief the cells of `pm` that OpenFOAM's `checkMesh -allGeometry` calls concave ("Concave cells
+ * (using face planes)", `primitiveMesh::checkConcaveCells`): 1 for a cell with a face whose plane
+ * has the centre of another face of the cell on it or on its outer side. For a face with centre c
+ * and outward unit normal n, and another face's centre p, the cell is concave when
+ * (p - c) / |p - c| . n > -1e-6 (OpenFOAM's `planarCosAngle`). A face split into coplanar pieces by
+ * hanging nodes makes its cell concave in this sense (see `IO::write_OpenFOAM()`'s bulge).
+ *
+ * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)`.
+ */
+inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g);
+
+namespace internal {
+// OpenFOAM's concave test of one cell from the centres and the outward area vectors of its faces
+// (see `concave_cells()`)
+inline bool concave_cell(const std::vector<Vec3>& centres, const std::vector<Vec3>& outward_areas)
+{
+  const double planar_cos_angle = 1.0e-6, VSMALL = 1.0e-300;
+  for(std::size_t i = 0; i < centres.size(); ++i) {
+    const Vec3 n = mul(outward_areas[i], 1.0 / (std::max)(norm(outward_areas[i]), VSMALL));
+    for(std::size_t j = 0; j < centres.size(); ++j) {
+      if(j == i) continue;
+      const Vec3 d = sub(centres[j], centres[i]);
+      if(dot(d, n) / (std::max)(norm(d), VSMALL) > -planar_cos_angle) return true;
+    }
+  }
+  return false;
+}
+} // namespace internal
+
+inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g)
+{
+  using namespace internal;
+  const std::size_t nc = pm.number_of_cells, nf = pm.faces.size(), ni = pm.neighbour.size();
+  std::vector<std::size_t> start(nc + 1, 0), faces;   // the faces of each cell
+  for(std::size_t f = 0; f < nf; ++f) { ++start[pm.owner[f] + 1]; if(f < ni) ++start[pm.neighbour[f] + 1]; }
+  for(std::size_t c = 0; c < nc; ++c) start[c + 1] += start[c];
+  faces.resize(start[nc]);
+  {
+    std::vector<std::size_t> pos(start.begin(), start.end() - 1);
+    for(std::size_t f = 0; f < nf; ++f) { faces[pos[pm.owner[f]]++] = f; if(f < ni) faces[pos[pm.neighbour[f]]++] = f; }
+  }
+  std::vector<char> concave(nc, 0);
+  std::vector<Vec3> centres, areas;
+  for(std::size_t c = 0; c < nc; ++c) {
+    centres.clear(); areas.clear();
+    for(std::size_t i = start[c]; i < start[c + 1]; ++i) {
+      const std::size_t f = faces[i];
+      centres.push_back(g.face_centres[f]);
+      areas.push_back(mul(g.face_areas[f], pm.owner[f] == c ? 1.0 : -1.0));
+    }
+    concave[c] = concave_cell(centres, areas) ? 1 : 0;
+  }
+  return concave;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
  * \brief per-element quality of a hexahedral mesh and its summary.
  */
 struct Mesh_quality
@@ -166,6 +224,7 @@ struct Mesh_quality
   std::vector<double> skewness;           ///< per face (internal and boundary), OpenFOAM's
   std::vector<double> cell_volume;        ///< per cell
   std::vector<double> face_warpage;       ///< per face (internal and boundary), degrees, see `face_warpage()`
+  std::vector<char> concave;              ///< per cell: 1 if concave for OpenFOAM, see `concave_cells()`
 
   struct Range { double min = 0, mean = 0, max = 0; std::size_t count = 0; };
   static Range range(const std::vector<double>& v)
@@ -181,6 +240,8 @@ struct Mesh_quality
   /// number of cells with a scaled Jacobian <= 0 (inverted or degenerate)
   std::size_t number_of_inverted_cells() const
   { return std::size_t(std::count_if(scaled_jacobian.begin(), scaled_jacobian.end(), [](double x) { return x <= 0; })); }
+  /// number of cells OpenFOAM's `checkMesh -allGeometry` calls concave
+  std::size_t number_of_concave_cells() const { return std::size_t(std::count(concave.begin(), concave.end(), char(1))); }
 };
 
 /*!
@@ -295,6 +356,7 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
     q.aspect_ratio[c] = ar;
   }
   q.face_warpage = face_warpage(mesh.points, pm, g);
+  q.concave = concave_cells(pm, g);
   return q;
 }
 
