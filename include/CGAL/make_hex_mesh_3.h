@@ -46,8 +46,10 @@ namespace CGAL {
  *   pyramid quality) of their cells, never making a valid cell invalid; curve vertices of cells
  *   still inverted return to the surface, then surface vertices are released into the volume
  *   (reported in the statistics as unreached), and buffer cells still below 0.02 are removed
- *   (their staircase face is the boundary there). Every cell of the result has a positive
- *   scaled Jacobian.
+ *   (their staircase face is the boundary there); before that removal, the cells of faces that cannot be cut
+ *   into positive tetrahedra with both cell centres (OpenFOAM's "face tets") are moved until
+ *   they can, where their scaled Jacobian and non-orthogonality allow. Every cell of the result
+ *   has a positive scaled Jacobian.
  *
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)

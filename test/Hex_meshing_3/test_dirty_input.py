@@ -136,6 +136,9 @@ NO_CONCAVE_CELLS = {"bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "e
                     "t20_part", "teapot"}
 # inputs with no boundary face farther than one surface size from the input at those sizes (the
 # goal is 0.25 for every input; with the thin parts kept, fandisk's farthest is 0.73, 1.32 without)
+# body-fitted meshes on which checkMesh -allGeometry finds nothing at all (no concave cell, no face
+# failing the tet decomposition, ...)
+GEOMETRY_OK = {"bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant", "fin_slot", "rotor", "t20_part"}
 NO_FACE_BEYOND_SURFACE_SIZE = {"cube", "cylinder", "cube_nonmanifold", "fandisk", "fandisk_crack", "fin_slot", "rotor"}
 SAME_TOPOLOGY = {"anchor", "cube", "eight", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
 
@@ -552,6 +555,13 @@ def main():
         foam_concave = int(m[0].group(1)) if m and m[0] else 0
         check(q["concave_cells"] == foam_concave,
               f"{stem}: the report's concave cells ({q['concave_cells']}) are checkMesh's ({foam_concave})")
+        m = [re.search(r"face tets: (\d+) faces", f) for f in flags if "face tets" in f]
+        foam_face_tets = int(m[0].group(1)) if m and m[0] else 0
+        check(q["face_tet_errors"] == foam_face_tets,
+              f"{stem}: the report's faces failing the tet decomposition ({q['face_tet_errors']}) are checkMesh's ({foam_face_tets})")
+        if stem in GEOMETRY_OK:
+            check(rg.returncode == 0 and "Mesh OK" in rg.stdout and not flags,
+                  f"{stem}: checkMesh -allGeometry: Mesh OK (flags: {flags})")
         if stem in NO_CONCAVE_CELLS:
             concave = [f for f in flags if "Concave cells" in f]
             check(not concave, f"{stem}: no concave cell under checkMesh -allGeometry ({concave})")

@@ -1224,6 +1224,29 @@ void test_polyhedral_half_splits()
       else centre_rise = d / du;
     }
     assert(centre_rise > 1.4);
+    // OpenFOAM's face tets: none on these valid cells; a corner of A's split face pushed beyond B's
+    // far side folds the face: its fan and B's centre make inverted tetrahedra
+    {
+      HM::OpenFOAM_geometry g;
+      g.compute(x, pm);
+      const auto ft = HM::face_tet_errors(x, pm, g);
+      assert(std::count(ft.begin(), ft.end(), char(1)) == 0);
+      auto folded = x;
+      for(std::size_t v = 0; v < folded.size(); ++v)
+        if(m.points[v] == Point_3(2.3, 0, 0)) folded[v][0] = 3.5;
+      g.compute(folded, pm);
+      const auto ft2 = HM::face_tet_errors(folded, pm, g);
+      std::size_t n_bad = 0;
+      for(std::size_t f = 0; f < ft2.size(); ++f) {
+        if(!ft2[f]) continue;
+        ++n_bad;
+        bool has = false;   // every flagged face has the folded corner
+        for(auto v : pm.faces[f]) has = has || m.points[v] == Point_3(2.3, 0, 0);
+        assert(has);
+      }
+      assert(n_bad > 0);
+      std::cout << "  face tets as OpenFOAM checks them: none on valid cells, " << n_bad << " faces at a folded corner\n";
+    }
     std::cout << "  concave cells as OpenFOAM counts them: a face split into coplanar quarters (1 cell); a 1 % "
                  "roof makes it convex; a saddle needs the face centre raised " << centre_rise << " x as much\n";
   }

@@ -501,17 +501,20 @@ int main(int argc, char** argv)
     for(const std::string& o : outputs) foam_output = foam_output || output_kind(o) == Output_kind::OPENFOAM;
     // (the points are computed for the report's count of concave cells even without such output)
     Mesh bulged;
-    std::size_t foam_concave = 0;
-    if(mesh.has_hanging_nodes()) {
+    std::size_t foam_concave = 0, foam_face_tets = 0;
+    {
       const auto x = HM::IO::internal::foam_points(mesh, HM::IO::default_hanging_bulge, &pm,
                                                    HM::IO::default_max_hanging_bulge, &foam_concave);
-      if(foam_output) {
+      if(foam_output && mesh.has_hanging_nodes()) {
         bulged = mesh;
         for(std::size_t v = 0; v < x.size(); ++v) bulged.points[v] = K::Point_3(x[v][0], x[v][1], x[v][2]);
       }
+      HM::OpenFOAM_geometry g;
+      g.compute(x, pm);
+      const std::vector<char> ft = HM::face_tet_errors(x, pm, g);
+      foam_face_tets = std::size_t(std::count(ft.begin(), ft.end(), char(1)));
     }
     const HM::Mesh_quality q = HM::compute_quality(bulged.points.empty() ? mesh : bulged, pm);
-    if(!mesh.has_hanging_nodes()) foam_concave = q.number_of_concave_cells();
     const double t_quality = since(t);
     const auto sj = HM::Mesh_quality::range(q.scaled_jacobian);
     const auto no = HM::Mesh_quality::range(q.non_orthogonality);
@@ -661,7 +664,7 @@ int main(int argc, char** argv)
             un.push_back({stats.unreached_vertices[i][0], stats.unreached_vertices[i][1], stats.unreached_vertices[i][2]});
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
                            {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces},
-                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"surface_vertices", stats.surface_vertices},
+                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
@@ -688,6 +691,7 @@ int main(int argc, char** argv)
       add_quality_details(j["quality"], mesh, pm, q);
       // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
       j["quality"]["concave_cells"] = foam_concave;
+      j["quality"]["face_tet_errors"] = foam_face_tets;
       j["outputs"] = outputs;
       for(const std::string& r : reports) {
         std::ofstream os(r);

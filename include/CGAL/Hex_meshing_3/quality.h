@@ -212,6 +212,78 @@ inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFO
   return concave;
 }
 
+namespace internal {
+// OpenFOAM's tetrahedron quality (`tetrahedron::quality()`): the signed volume of (a, b, c, d)
+// over that of the regular tetrahedron with the same circumradius; about 1 for a regular one,
+// negative when inverted
+inline double foam_tet_quality(const Vec3& a_, const Vec3& b_, const Vec3& c_, const Vec3& d_)
+{
+  const double GREAT = 1.0e15, ROOTVSMALL = 1.0e-150;
+  const Vec3 a = sub(b_, a_), b = sub(c_, a_), c = sub(d_, a_);
+  const double volume = dot(cross(a, b), c) / 6.0;
+  const double lambda = dot(c, c) - dot(a, c), mu = dot(b, b) - dot(a, b);
+  const Vec3 ba = cross(b, a), ca = cross(c, a);
+  const Vec3 num = sub(mul(ba, lambda), mul(ca, mu));
+  const double denom = dot(c, ba);
+  double radius = GREAT;
+  if(std::abs(denom) >= ROOTVSMALL) radius = norm(add(mul(a, 0.5), mul(num, 0.5 / denom)));
+  radius = (std::min)(radius, GREAT);
+  return volume / (8.0 / (9.0 * std::sqrt(3.0)) * radius * radius * radius + ROOTVSMALL);
+}
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the faces of `pm` that OpenFOAM's `checkMesh -allGeometry` reports in "Error in face tets"
+ * (`polyMeshTetDecomposition::checkFaceTets()` with its `minTetQuality` 1e-30): 1 for a face whose
+ * fan of triangles around its centre forms, with the owner's or the neighbour's cell centre, a
+ * tetrahedron of quality at most 1e-30 (`internal::foam_tet_quality()`), or that has no vertex
+ * from which the fan of triangles forms tetrahedra of quality above 1e-30 with both cell centres
+ * (`findSharedBasePoint()`; a boundary face: with its owner's, `findBasePoint()`).
+ *
+ * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)`.
+ */
+template <typename Point_3>
+std::vector<char> face_tet_errors(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm,
+                                  const OpenFOAM_geometry& g)
+{
+  using namespace internal;
+  const double tol = 1.0e-30;   // OpenFOAM's minTetQuality, sqr(SMALL)
+  const std::size_t ni = pm.neighbour.size();
+  std::vector<char> bad(pm.faces.size(), 0);
+  for(std::size_t f = 0; f < pm.faces.size(); ++f) {
+    const auto& F = pm.faces[f];
+    const std::size_t n = F.size();
+    const Vec3& fc = g.face_centres[f];
+    const Vec3& co = g.cell_centres[pm.owner[f]];
+    const bool internal_face = f < ni;
+    for(std::size_t i = 0; i < n && !bad[f]; ++i)
+      if(foam_tet_quality(vec(points[F[i]]), vec(points[F[(i + 1) % n]]), fc, co) > -tol) bad[f] = 1;
+    if(internal_face) {
+      const Vec3& cn = g.cell_centres[pm.neighbour[f]];
+      for(std::size_t i = 0; i < n && !bad[f]; ++i)
+        if(foam_tet_quality(vec(points[F[i]]), vec(points[F[(i + 1) % n]]), fc, cn) < tol) bad[f] = 1;
+    }
+    if(bad[f]) continue;
+    // a base point shared by both cells (a boundary face: good for its owner, `findBasePoint()`)
+    const Vec3 cn = internal_face ? g.cell_centres[pm.neighbour[f]] : co;
+    bool found = false;
+    for(std::size_t base = 0; base < n && !found; ++base) {
+      double worst = std::numeric_limits<double>::max();
+      const Vec3 b = vec(points[F[base]]);
+      for(std::size_t t = 1; t + 1 < n; ++t) {
+        const std::size_t i = (t + base) % n, j = (i + 1) % n;
+        const Vec3 pa = vec(points[F[i]]), pb = vec(points[F[j]]);
+        worst = (std::min)(worst, foam_tet_quality(co, b, pa, pb));
+        if(internal_face) worst = (std::min)(worst, foam_tet_quality(cn, b, pb, pa));
+      }
+      found = worst > tol;
+    }
+    if(!found) bad[f] = 1;
+  }
+  return bad;
+}
+
 /*!
  * \ingroup PkgHexMeshing3Quality
  * \brief per-element quality of a hexahedral mesh and its summary.

@@ -93,6 +93,35 @@ inline double hex_pyramid_quality(const Vec3* x)
   return q;
 }
 
+// The face decompositions OpenFOAM checks (checkMesh -allGeometry's "face tets": a base vertex of
+// each face whose fan of triangles forms tetrahedra of positive volume with the cell centres on
+// both sides): a quad split along one of its diagonals gives two triangles, each the corner
+// triangle of a vertex off that diagonal. The two cells of a face must agree on the diagonal, and
+// each sees only its own side, so both splits must be valid: returns the smallest, over the 24
+// corners of the six faces, of the corner triangle's tetrahedron with the cell's vertex average
+// (6V / product of the 3 edge lengths at the corner, relative to a cube's). 1 for a cube; <= 0
+// when a split of a face gives this cell a tetrahedron that is flat or inverted.
+inline double hex_face_split_quality(const Vec3* x)
+{
+  Vec3 cc{{0, 0, 0}};
+  for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
+  cc = mul(cc, 0.125);
+  const double cube = 1.0 / std::sqrt(3.0);   // a cube's corner: (a x b).u / (|a| |b| |u|)
+  double q = std::numeric_limits<double>::max();
+  for(const auto& f : hex_local_faces()) {
+    double corner[4];
+    for(int i = 0; i < 4; ++i) {
+      const Vec3& p = x[f[i]];
+      const Vec3 a = sub(x[f[(i + 1) % 4]], p), b = sub(x[f[(i + 3) % 4]], p), u = sub(cc, p);
+      const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(u, u));
+      // the face's vertices run so that its normal points out of the cell: b x a . u > 0 inside
+      corner[i] = l > 0 ? dot(cross(b, a), u) / (l * cube) : 0.0;
+    }
+    q = (std::min)({q, corner[0], corner[1], corner[2], corner[3]});
+  }
+  return q;
+}
+
 // Knupp's shape energy of a hexahedron: the mean over its 8 corners of the squared condition
 // number of the corner's Jacobian matrix A (its three edges), |A|^2 |adj A|^2 / (9 det^2); 1 for a
 // cube, growing without bound as a corner flattens. The determinant is Escobar et al.'s
@@ -234,6 +263,8 @@ public:
     double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
     double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
     double max_skewness = 3.5;         ///< buffer cells at a face more skewed than this are removed (OpenFOAM fails > 4)
+    double min_face_split_quality = 0.05;   ///< cells whose faces split worse than this are repaired last
+    int face_split_passes = 4;              ///< sweeps of that repair
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -258,6 +289,7 @@ public:
     update_hanging();
     // a cancellation stops the smoothing sweeps only: the steps that make every cell valid run
     optimise(visitor);
+    repair_face_splits();
     assign_patches();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
@@ -934,7 +966,13 @@ private:
   {
     Vec3 x[8];
     for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
-    return (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
+    if(base_only) return hex_scaled_jacobian(x);
+    const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
+    if(!use_face_splits) return q;
+    // in the face-split repair only (see `repair_face_splits()`), and only where a split fails or
+    // nearly does
+    const double split = hex_face_split_quality(x);
+    return split < opt.min_face_split_quality ? (std::min)(q, split) : q;
   }
   void affected_cells(Index v, std::vector<Index>& out) const
   {
@@ -991,6 +1029,17 @@ private:
     q_old.resize(cells.size());
     double f0 = 1, m0 = 0;
     for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = cell_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); m0 += q_old[i]; }
+    // in the repair, the scaled Jacobian is guarded on its own too (a cell whose split is bad has
+    // a low quality, which must not let its scaled Jacobian fall that low)
+    base_old.resize(cells.size());
+    // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
+    double nonortho_cap = 0;
+    if(use_face_splits) {
+      base_only = true;
+      for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_quality(cells[i]);
+      base_only = false;
+      nonortho_cap = (std::max)(60.0, max_non_orthogonality(cells));
+    }
     Vec3 best = x0;
     double fb = f0, mb = m0;
     const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
@@ -1004,9 +1053,16 @@ private:
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const double q = cell_quality(cells[i]);
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
+        if(use_face_splits) {
+          base_only = true;
+          const double b = cell_quality(cells[i]);
+          base_only = false;
+          if(b < (std::min)(base_old[i], sj_floor)) return;
+        }
         f = (std::min)(f, q);
         mean += q;
       }
+      if(use_face_splits && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
       if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; }
     };
@@ -1265,6 +1321,100 @@ private:
   }
 
 
+  // OpenFOAM's "face tets" (checkMesh -allGeometry) fail at a face none of whose diagonal splits
+  // gives positive tetrahedra with the cell centres on both sides: a folded face of a cell the
+  // optimisation left valid. Made a quality of its own, the splits trade the scaled Jacobian away
+  // everywhere (eight: minimum 0.22 -> 0.04); so they are repaired last and locally: the vertices
+  // of the cells with a face split below `min_face_split_quality` are moved by `improve()`, the
+  // quality then counting the split, with the usual guard (no cell falls below min(its quality,
+  // keep_quality)). Other cells are not touched.
+  void repair_face_splits()
+  {
+    std::vector<Index> cells, work;
+    std::vector<char> in_work(P.size(), 0);
+    auto split_of = [&](Index c) {
+      Vec3 x[8];
+      for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
+      return hex_face_split_quality(x);
+    };
+    // the mesh's minimum scaled Jacobian does not fall either
+    double sj_min = 1;
+    base_only = true;
+    for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_quality(c));
+    base_only = false;
+    sj_floor = (std::max)(0.25, sj_min);
+    {
+      std::map<std::array<Index, 4>, std::pair<Index, int>> open;
+      face_neighbour.assign(m.hexahedra.size(), std::array<Index, 6>{{NONE, NONE, NONE, NONE, NONE, NONE}});
+      for(Index c = 0; c < m.hexahedra.size(); ++c)
+        for(int fi = 0; fi < 6; ++fi) {
+          std::array<Index, 4> k;
+          for(int i = 0; i < 4; ++i) k[std::size_t(i)] = m.hexahedra[c][std::size_t(hex_local_faces()[std::size_t(fi)][std::size_t(i)])];
+          std::sort(k.begin(), k.end());
+          auto it = open.find(k);
+          if(it == open.end()) { open.emplace(k, std::make_pair(c, fi)); continue; }
+          face_neighbour[c][std::size_t(fi)] = it->second.first;
+          face_neighbour[it->second.first][std::size_t(it->second.second)] = c;
+          open.erase(it);
+        }
+    }
+    // the better diagonal split of a face, each scored by the worse of its corner tetrahedra in
+    // the cell and in the cell across a whole face (as `hex_face_split_quality()`)
+    auto shared_split = [&](Index c, int fi) {
+      auto centre = [&](Index e) {
+        Vec3 cc{{0, 0, 0}};
+        for(Index v : m.hexahedra[e]) cc = add(cc, P[v]);
+        return mul(cc, 0.125);
+      };
+      const Index d = face_neighbour[c][std::size_t(fi)];
+      const Vec3 cc = centre(c), cd = d == NONE ? cc : centre(d);
+      const auto& f = hex_local_faces()[std::size_t(fi)];
+      const double cube = 1.0 / std::sqrt(3.0);
+      double corner[4];
+      for(int i = 0; i < 4; ++i) {
+        const Vec3& p = P[m.hexahedra[c][std::size_t(f[std::size_t(i)])]];
+        const Vec3 a = sub(P[m.hexahedra[c][std::size_t(f[std::size_t((i + 1) % 4)])]], p);
+        const Vec3 b = sub(P[m.hexahedra[c][std::size_t(f[std::size_t((i + 3) % 4)])]], p);
+        const Vec3 n = cross(b, a), u = sub(cc, p), w = sub(cd, p);
+        const double la = std::sqrt(dot(a, a) * dot(b, b));
+        const double lu = la * norm(u), lw = la * norm(w);
+        corner[i] = lu > 0 ? dot(n, u) / (lu * cube) : 0.0;
+        if(d != NONE) corner[i] = (std::min)(corner[i], lw > 0 ? -dot(n, w) / (lw * cube) : 0.0);
+      }
+      return (std::max)((std::min)(corner[1], corner[3]), (std::min)(corner[0], corner[2]));
+    };
+    use_face_splits = true;
+    std::vector<char> failing(m.hexahedra.size(), 0);
+    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
+      // the cells of the faces whose splits fail (or nearly): only they are repaired
+      std::fill(failing.begin(), failing.end(), 0);
+      for(Index c = 0; c < m.hexahedra.size(); ++c)
+        for(int fi = 0; fi < 6; ++fi) {
+          const Index d = face_neighbour[c][std::size_t(fi)];
+          if(d != NONE && d < c) continue;
+          if(!(shared_split(c, fi) < opt.min_face_split_quality)) continue;
+          failing[c] = 1;
+          if(d != NONE) failing[d] = 1;
+        }
+      for(Index c = 0; c < m.hexahedra.size(); ++c) {
+        if(!failing[c] || !(split_of(c) < opt.min_face_split_quality)) continue;
+        for(Index v : m.hexahedra[c]) {
+          if(kind[v] == HANGING) {
+            for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
+          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
+        }
+      }
+      if(work.empty()) break;
+      std::sort(work.begin(), work.end());
+      std::size_t moved = 0;
+      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
+      rep.face_split_repairs += moved;
+      work.clear();
+      if(moved == 0) break;
+    }
+    use_face_splits = false;
+  }
+
   // The last resort: a buffer cell the optimisation could not make valid is removed; the staircase
   // face under it and the side faces of its buffer neighbours become boundary faces (of the top
   // face's patch). Interior cells cannot be invalid: they start valid and no move makes a valid
@@ -1426,6 +1576,38 @@ private:
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
   bool cancelled = false;
+  bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
+  double sj_floor = 0.2;          // in the repair: nor below min(its scaled Jacobian, this)
+  mutable bool base_only = false; // cell_quality() is the scaled Jacobian alone
+  std::vector<double> base_old;
+  std::vector<std::array<Index, 6>> face_neighbour;   // in the repair: the cell across each whole face
+
+  // the largest angle (degrees) between a face's normal and the line joining the vertex averages
+  // of its two cells, over the whole faces of `cells` (OpenFOAM's non-orthogonality, roughly)
+  double max_non_orthogonality(const std::vector<Index>& cells) const
+  {
+    double worst = 0;
+    auto centre = [&](Index c) {
+      Vec3 cc{{0, 0, 0}};
+      for(Index v : m.hexahedra[c]) cc = add(cc, P[v]);
+      return mul(cc, 0.125);
+    };
+    for(Index c : cells) {
+      const Vec3 cc = centre(c);
+      for(int fi = 0; fi < 6; ++fi) {
+        const Index d = face_neighbour[c][std::size_t(fi)];
+        if(d == NONE) continue;
+        const auto& f = hex_local_faces()[std::size_t(fi)];
+        const auto& H = m.hexahedra[c];
+        const Vec3 n = cross(sub(P[H[std::size_t(f[2])]], P[H[std::size_t(f[0])]]), sub(P[H[std::size_t(f[3])]], P[H[std::size_t(f[1])]]));
+        const Vec3 e = sub(centre(d), cc);
+        const double l = norm(n) * norm(e);
+        if(!(l > 0)) continue;
+        worst = (std::max)(worst, std::acos((std::max)(-1.0, (std::min)(1.0, dot(n, e) / l))) * 180.0 / CGAL_PI);
+      }
+    }
+    return worst;
+  }
 };
 
 } // namespace internal
