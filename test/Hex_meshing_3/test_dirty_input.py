@@ -130,7 +130,7 @@ BODY_FITTED_SIZES = {"anchor": THIN, "anchor_dupflip": THIN, "cube_nonmanifold":
                      "fandisk_crack": THIN}
 # clean closed inputs whose boundary keeps the input's topology at those sizes (the others have
 # parts thinner than two surface cells: rotor's blades, the elephant's trunk and tail)
-# body-fitted meshes that checkMesh -allGeometry finds no concave cell in (the others have 1-16,
+# body-fitted meshes that checkMesh -allGeometry finds no concave cell in (the others have 2-4,
 # split faces of moved cells at concave features that even the steepest bulge leaves concave)
 NO_CONCAVE_CELLS = {"bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant", "fin_slot", "rotor",
                     "t20_part", "teapot"}
