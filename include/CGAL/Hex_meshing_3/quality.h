@@ -155,19 +155,6 @@ struct OpenFOAM_geometry
   }
 };
 
-/*!
- * \ingroup PkgHexMeshing3Quality
- * \brief the cells of `pm` that OpenFOAM's `checkMesh -allGeometry` calls concave ("Concave cells
- * (using face planes)", `primitiveMesh::checkConcaveCells`): 1 for a cell with a face whose plane
- * has the centre of another face of the cell on it or on its outer side. For a face with centre c
- * and outward unit normal n, and another face's centre p, the cell is concave when
- * (p - c) / |p - c| . n > -1e-6 (OpenFOAM's `planarCosAngle`). A face split into coplanar pieces by
- * hanging nodes makes its cell concave in this sense (see `IO::write_OpenFOAM()`'s bulge).
- *
- * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)`.
- */
-inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g);
-
 namespace internal {
 // OpenFOAM's concave test of one cell from the centres and the outward area vectors of its faces
 // (see `concave_cells()`)
@@ -186,6 +173,17 @@ inline bool concave_cell(const std::vector<Vec3>& centres, const std::vector<Vec
 }
 } // namespace internal
 
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the cells of `pm` that OpenFOAM's `checkMesh -allGeometry` calls concave ("Concave cells
+ * (using face planes)", `primitiveMesh::checkConcaveCells`): 1 for a cell with a face whose plane
+ * has the centre of another face of the cell on it or on its outer side. For a face with centre c
+ * and outward unit normal n, and another face's centre p, the cell is concave when
+ * (p - c) / |p - c| . n > -1e-6 (OpenFOAM's `planarCosAngle`). A face split into coplanar pieces by
+ * hanging nodes makes its cell concave in this sense (see `IO::write_OpenFOAM()`'s bulge).
+ *
+ * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)`.
+ */
 inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g)
 {
   using namespace internal;

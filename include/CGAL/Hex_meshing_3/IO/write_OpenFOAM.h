@@ -58,9 +58,9 @@ inline void foam_header(std::ostream& os, const char* cls, const char* location,
 // face and edge nodes together leaves eight at --thin-cells 5 with 41 concave cells, face nodes
 // first with 4). Raising only the nodes of the concave cells tilts the pieces of their
 // neighbours' faces and makes more cells concave than it cures (anchor 491 -> 337 -> 636 over
-// four rounds, against 491 -> 130 uniformly). A node stops rising where a cell it is a corner of would fall below
-// min(its scaled Jacobian at `bulge`, max(0.3, the mesh's minimum)): the mesh's minimum scaled
-// Jacobian never falls. The points with the fewest concave cells are returned; `concave`, if
+// four rounds, against 491 -> 130 uniformly). A node stops rising where a cell it is a corner of
+// would fall below min(its scaled Jacobian at `bulge`, max(0.3, the mesh's minimum)): the mesh's
+// minimum scaled Jacobian never falls. The points with the fewest concave cells are returned; `concave`, if
 // given, receives their count. Without `pm`: the uniform `bulge`, no count.
 template <typename HexMesh>
 std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge, const Polyhedral_mesh_3* pm = nullptr,
@@ -198,7 +198,8 @@ inline std::string foam_word(const std::string& s)
  * coplanar pieces is what checkMesh's concave-cell check flags, and the slight roof makes the cell
  * convex (on the test surfaces 0.01 removes 80-100 % of the concave cells and lowers the
  * non-orthogonality a little). Where cells are still concave (warped split faces of moved cells),
- * the bulge of the hanging nodes inside the mesh rises, uniformly, up to `default_max_hanging_bulge`
+ * the bulge of the hanging nodes inside the mesh rises (face nodes first, then edge nodes, each
+ * kind alike) up to `default_max_hanging_bulge`
  * (nodes on the boundary keep `hanging_bulge`; no cell's scaled Jacobian falls below
  * min(its own, max(0.3, the mesh's minimum))): see `internal::foam_points()`. 0 writes the points
  * as they are.

@@ -93,6 +93,25 @@ inline double hex_pyramid_quality(const Vec3* x)
   return q;
 }
 
+// The corner tetrahedron of a face at vertex p (its neighbours `next` and `prev` along the face,
+// which runs counter-clockwise seen from outside the cell) with the cell's centre c: 6V / product
+// of the 3 edge lengths at p, relative to a cube's; > 0 when c is inside. Swapping `next` and
+// `prev` scores the face for the cell on its other side.
+inline double face_corner_quality(const Vec3& p, const Vec3& next, const Vec3& prev, const Vec3& c)
+{
+  const double cube = 1.0 / std::sqrt(3.0);   // a cube's corner: (b x a).u / (|a| |b| |u|)
+  const Vec3 a = sub(next, p), b = sub(prev, p), u = sub(c, p);
+  const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(u, u));
+  return l > 0 ? dot(cross(b, a), u) / (l * cube) : 0.0;
+}
+
+inline Vec3 hex_centre(const Vec3* x)
+{
+  Vec3 cc{{0, 0, 0}};
+  for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
+  return mul(cc, 0.125);
+}
+
 // The face decompositions OpenFOAM checks (checkMesh -allGeometry's "face tets": a base vertex of
 // each face whose fan of triangles forms tetrahedra of positive volume with the cell centres on
 // both sides): a quad split along one of its diagonals gives two triangles, each the corner
@@ -103,22 +122,10 @@ inline double hex_pyramid_quality(const Vec3* x)
 // when a split of a face gives this cell a tetrahedron that is flat or inverted.
 inline double hex_face_split_quality(const Vec3* x)
 {
-  Vec3 cc{{0, 0, 0}};
-  for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
-  cc = mul(cc, 0.125);
-  const double cube = 1.0 / std::sqrt(3.0);   // a cube's corner: (a x b).u / (|a| |b| |u|)
+  const Vec3 cc = hex_centre(x);
   double q = std::numeric_limits<double>::max();
-  for(const auto& f : hex_local_faces()) {
-    double corner[4];
-    for(int i = 0; i < 4; ++i) {
-      const Vec3& p = x[f[i]];
-      const Vec3 a = sub(x[f[(i + 1) % 4]], p), b = sub(x[f[(i + 3) % 4]], p), u = sub(cc, p);
-      const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(u, u));
-      // the face's vertices run so that its normal points out of the cell: b x a . u > 0 inside
-      corner[i] = l > 0 ? dot(cross(b, a), u) / (l * cube) : 0.0;
-    }
-    q = (std::min)({q, corner[0], corner[1], corner[2], corner[3]});
-  }
+  for(const auto& f : hex_local_faces())
+    for(int i = 0; i < 4; ++i) q = (std::min)(q, face_corner_quality(x[f[i]], x[f[(i + 1) % 4]], x[f[(i + 3) % 4]], cc));
   return q;
 }
 
@@ -962,11 +969,13 @@ private:
 
   // -----------------------------------------------------------------------------------------------
   // 4. optimisation
+  void corners(Index c, Vec3* x) const { for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]]; }
+  double cell_sj(Index c) const { Vec3 x[8]; corners(c, x); return hex_scaled_jacobian(x); }
+  Vec3 cell_centre(Index c) const { Vec3 x[8]; corners(c, x); return hex_centre(x); }
   double cell_quality(Index c) const
   {
     Vec3 x[8];
-    for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
-    if(base_only) return hex_scaled_jacobian(x);
+    corners(c, x);
     const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
     if(!use_face_splits) return q;
     // in the face-split repair only (see `repair_face_splits()`), and only where a split fails or
@@ -1035,9 +1044,7 @@ private:
     // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
     double nonortho_cap = 0;
     if(use_face_splits) {
-      base_only = true;
-      for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_quality(cells[i]);
-      base_only = false;
+      for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_sj(cells[i]);
       nonortho_cap = (std::max)(60.0, max_non_orthogonality(cells));
     }
     Vec3 best = x0;
@@ -1053,12 +1060,7 @@ private:
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const double q = cell_quality(cells[i]);
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
-        if(use_face_splits) {
-          base_only = true;
-          const double b = cell_quality(cells[i]);
-          base_only = false;
-          if(b < (std::min)(base_old[i], sj_floor)) return;
-        }
+        if(use_face_splits && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
         f = (std::min)(f, q);
         mean += q;
       }
@@ -1324,24 +1326,18 @@ private:
   // OpenFOAM's "face tets" (checkMesh -allGeometry) fail at a face none of whose diagonal splits
   // gives positive tetrahedra with the cell centres on both sides: a folded face of a cell the
   // optimisation left valid. Made a quality of its own, the splits trade the scaled Jacobian away
-  // everywhere (eight: minimum 0.22 -> 0.04); so they are repaired last and locally: the vertices
-  // of the cells with a face split below `min_face_split_quality` are moved by `improve()`, the
-  // quality then counting the split, with the usual guard (no cell falls below min(its quality,
-  // keep_quality)). Other cells are not touched.
+  // everywhere (eight: minimum 0.22 -> 0.04); so they are repaired last and locally: the cells of
+  // the whole faces whose better diagonal split scores below `min_face_split_quality` in either
+  // cell, if their own split quality is below it too, have their vertices moved by `improve()`,
+  // the quality then counting the split. Guards: no cell falls below min(its quality,
+  // keep_quality), nor its scaled Jacobian below min(its own, max(0.25, the mesh's minimum)), nor
+  // does a face's non-orthogonality rise above max(its own, 60 degrees). Other cells are not touched.
   void repair_face_splits()
   {
     std::vector<Index> cells, work;
     std::vector<char> in_work(P.size(), 0);
-    auto split_of = [&](Index c) {
-      Vec3 x[8];
-      for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
-      return hex_face_split_quality(x);
-    };
-    // the mesh's minimum scaled Jacobian does not fall either
     double sj_min = 1;
-    base_only = true;
-    for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_quality(c));
-    base_only = false;
+    for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_sj(c));
     sj_floor = (std::max)(0.25, sj_min);
     {
       std::map<std::array<Index, 4>, std::pair<Index, int>> open;
@@ -1361,25 +1357,17 @@ private:
     // the better diagonal split of a face, each scored by the worse of its corner tetrahedra in
     // the cell and in the cell across a whole face (as `hex_face_split_quality()`)
     auto shared_split = [&](Index c, int fi) {
-      auto centre = [&](Index e) {
-        Vec3 cc{{0, 0, 0}};
-        for(Index v : m.hexahedra[e]) cc = add(cc, P[v]);
-        return mul(cc, 0.125);
-      };
       const Index d = face_neighbour[c][std::size_t(fi)];
-      const Vec3 cc = centre(c), cd = d == NONE ? cc : centre(d);
+      const Vec3 cc = cell_centre(c), cd = d == NONE ? cc : cell_centre(d);
       const auto& f = hex_local_faces()[std::size_t(fi)];
-      const double cube = 1.0 / std::sqrt(3.0);
+      const auto& H = m.hexahedra[c];
       double corner[4];
       for(int i = 0; i < 4; ++i) {
-        const Vec3& p = P[m.hexahedra[c][std::size_t(f[std::size_t(i)])]];
-        const Vec3 a = sub(P[m.hexahedra[c][std::size_t(f[std::size_t((i + 1) % 4)])]], p);
-        const Vec3 b = sub(P[m.hexahedra[c][std::size_t(f[std::size_t((i + 3) % 4)])]], p);
-        const Vec3 n = cross(b, a), u = sub(cc, p), w = sub(cd, p);
-        const double la = std::sqrt(dot(a, a) * dot(b, b));
-        const double lu = la * norm(u), lw = la * norm(w);
-        corner[i] = lu > 0 ? dot(n, u) / (lu * cube) : 0.0;
-        if(d != NONE) corner[i] = (std::min)(corner[i], lw > 0 ? -dot(n, w) / (lw * cube) : 0.0);
+        const Vec3& p = P[H[std::size_t(f[std::size_t(i)])]];
+        const Vec3& next = P[H[std::size_t(f[std::size_t((i + 1) % 4)])]];
+        const Vec3& prev = P[H[std::size_t(f[std::size_t((i + 3) % 4)])]];
+        corner[i] = face_corner_quality(p, next, prev, cc);
+        if(d != NONE) corner[i] = (std::min)(corner[i], face_corner_quality(p, prev, next, cd));
       }
       return (std::max)((std::min)(corner[1], corner[3]), (std::min)(corner[0], corner[2]));
     };
@@ -1397,7 +1385,9 @@ private:
           if(d != NONE) failing[d] = 1;
         }
       for(Index c = 0; c < m.hexahedra.size(); ++c) {
-        if(!failing[c] || !(split_of(c) < opt.min_face_split_quality)) continue;
+        Vec3 x[8];
+        corners(c, x);
+        if(!failing[c] || !(hex_face_split_quality(x) < opt.min_face_split_quality)) continue;
         for(Index v : m.hexahedra[c]) {
           if(kind[v] == HANGING) {
             for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
@@ -1578,8 +1568,7 @@ private:
   bool cancelled = false;
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   double sj_floor = 0.2;          // in the repair: nor below min(its scaled Jacobian, this)
-  mutable bool base_only = false; // cell_quality() is the scaled Jacobian alone
-  std::vector<double> base_old;
+  std::vector<double> base_old;   // improve(), in the repair: the scaled Jacobians before the move
   std::vector<std::array<Index, 6>> face_neighbour;   // in the repair: the cell across each whole face
 
   // the largest angle (degrees) between a face's normal and the line joining the vertex averages
@@ -1587,20 +1576,15 @@ private:
   double max_non_orthogonality(const std::vector<Index>& cells) const
   {
     double worst = 0;
-    auto centre = [&](Index c) {
-      Vec3 cc{{0, 0, 0}};
-      for(Index v : m.hexahedra[c]) cc = add(cc, P[v]);
-      return mul(cc, 0.125);
-    };
     for(Index c : cells) {
-      const Vec3 cc = centre(c);
+      const Vec3 cc = cell_centre(c);
       for(int fi = 0; fi < 6; ++fi) {
         const Index d = face_neighbour[c][std::size_t(fi)];
         if(d == NONE) continue;
         const auto& f = hex_local_faces()[std::size_t(fi)];
         const auto& H = m.hexahedra[c];
         const Vec3 n = cross(sub(P[H[std::size_t(f[2])]], P[H[std::size_t(f[0])]]), sub(P[H[std::size_t(f[3])]], P[H[std::size_t(f[1])]]));
-        const Vec3 e = sub(centre(d), cc);
+        const Vec3 e = sub(cell_centre(d), cc);
         const double l = norm(n) * norm(e);
         if(!(l > 0)) continue;
         worst = (std::max)(worst, std::acos((std::max)(-1.0, (std::min)(1.0, dot(n, e) / l))) * 180.0 / CGAL_PI);
