@@ -99,7 +99,9 @@ namespace CGAL {
  *   \cgalParamNBegin{feature_curves}
  *     \cgalParamDescription{the curves and corners the boundary must follow}
  *     \cgalParamType{`const Hex_meshing_3::Feature_curves_3<Geom_traits>*`}
- *     \cgalParamDefault{`Feature_curves_3` of the domain with its default options (30 degrees)}
+ *     \cgalParamDefault{`Feature_curves_3` of the domain at 30 degrees, its sharp edges judged at the scale of half
+ *       the smallest of the criteria's surface, curvature and feature sizes (`Feature_curves_3::Options::scale`)
+ *       and against the edges around them (`Feature_curves_3::Options::contrast` 3)}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{progress and cancellation hooks (model of `HexMeshingVisitor`)}
@@ -154,7 +156,16 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     typedef Hex_meshing_3::Feature_curves_3<GT> Features;
     std::unique_ptr<Features> own;
     const Features* features = choose_parameter(get_parameter(np, HNP::feature_curves), static_cast<const Features*>(nullptr));
-    if(!features) { own = std::make_unique<Features>(domain); features = own.get(); }
+    if(!features) {   // sharp edges judged at half the finest size asked for the surface, and by contrast
+      typename Features::Options fo;
+      double finest = CGAL::to_double(criteria.surface_size());
+      if(criteria.curvature_size() > 0) finest = (std::min)(finest, CGAL::to_double(criteria.curvature_size()));
+      if(criteria.feature_size() > 0) finest = (std::min)(finest, CGAL::to_double(criteria.feature_size()));
+      fo.scale = finest / 2;
+      fo.contrast = 3;
+      own = std::make_unique<Features>(domain, fo);
+      features = own.get();
+    }
     visitor.on_phase_begin("capture", out.number_of_cells());
     Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features, stats);
     if(!capture.run(visitor)) status = Hex_meshing_3::Status::CANCELED;

@@ -813,6 +813,70 @@ void test_features()
     std::size_t in_curves = 0;   // every feature edge is on exactly one curve
     for(const auto& c : f.curves()) in_curves += c.vertices.size() - (c.closed ? 0 : 1);
     assert(in_curves == f.edges().size());
+    // judged at the scale and by the contrast make_hex_mesh_3() uses: a CAD part keeps them all
+    Features::Options o;
+    o.scale = 0.0125;
+    o.contrast = 3;
+    const Features judged(d, o);
+    assert(judged.number_of_smooth_edges() == 0 && judged.edges().size() == f.edges().size() &&
+           judged.curves().size() == f.curves().size() && judged.corners() == f.corners());
+  }
+  {
+    // the creases of a coarse triangulation of a smooth shape do not stand out from the edges
+    // around them: eight.off's 149 sharp edges (30-60 degrees) among 10-15 degree ones
+    Domain eight("data/eight.off");
+    const Features all(eight);
+    Features::Options o;
+    o.contrast = 3;
+    const Features judged(eight, o);
+    std::set<std::array<std::uint32_t, 2>> kept;
+    for(const auto& e : judged.edges()) kept.insert(e.vertices);
+    std::size_t in_curves = 0;
+    for(const auto& c : judged.curves()) in_curves += c.vertices.size() - (c.closed ? 0 : 1);
+    assert(in_curves == judged.edges().size());
+    // the edges left out are sharp edges of the plain detection, below twice the feature angle
+    // (their dihedral angle recomputed here from the triangles)
+    std::map<std::array<std::uint32_t, 2>, std::vector<std::size_t>> faces_of;
+    const auto& tr = eight.triangle_indices();
+    for(std::size_t t = 0; t < tr.size(); ++t)
+      for(int k = 0; k < 3; ++k) {
+        std::uint32_t a = tr[t][std::size_t(k)], b = tr[t][std::size_t((k + 1) % 3)];
+        faces_of[{{(std::min)(a, b), (std::max)(a, b)}}].push_back(t);
+      }
+    std::size_t left = 0;
+    for(const auto& e : all.edges()) {
+      if(kept.count(e.vertices)) continue;
+      ++left;
+      const auto& fs = faces_of[e.vertices];
+      assert(fs.size() == 2);
+      const K::Vector_3 n0 = CGAL::unit_normal(eight.points()[tr[fs[0]][0]], eight.points()[tr[fs[0]][1]], eight.points()[tr[fs[0]][2]]);
+      const K::Vector_3 n1 = CGAL::unit_normal(eight.points()[tr[fs[1]][0]], eight.points()[tr[fs[1]][1]], eight.points()[tr[fs[1]][2]]);
+      const double angle = std::acos((std::max)(-1.0, (std::min)(1.0, CGAL::to_double(n0 * n1)))) * 180 / CGAL_PI;
+      assert(angle >= 30 - 1e-9 && angle < 60);
+    }
+    assert(left == judged.number_of_smooth_edges() && left + kept.size() == all.edges().size());
+    std::cout << "  eight, contrast 3: " << left << " of " << all.edges().size() << " sharp edges left out, "
+              << judged.curves().size() << " curves (" << all.curves().size() << ")\n";
+    assert(left >= all.edges().size() / 2);
+    // at a scale wider than fin_slot's 0.01 slot and fin, the four 0.01 edges across their ends
+    // are not sharp (the faces within the scale reach round them); at 0.002 they are
+    Domain fin("data/fin_slot.off");
+    Features::Options wide, narrow;
+    wide.scale = 0.0125;
+    narrow.scale = 0.002;
+    const Features fw(fin, wide), fn(fin, narrow), f0(fin);
+    std::set<std::array<std::uint32_t, 2>> in_wide;
+    for(const auto& e : fw.edges()) in_wide.insert(e.vertices);
+    std::size_t short_left = 0;
+    for(const auto& e : f0.edges())
+      if(!in_wide.count(e.vertices)) {
+        const double l = std::sqrt(CGAL::to_double(CGAL::squared_distance(fin.points()[e.vertices[0]], fin.points()[e.vertices[1]])));
+        assert(std::abs(l - 0.01) < 1e-9);
+        ++short_left;
+      }
+    std::cout << "  fin_slot: scale 0.0125 leaves out " << fw.number_of_smooth_edges() << " edges (all 0.01 long), "
+              << "scale 0.002 " << fn.number_of_smooth_edges() << "\n";
+    assert(short_left == 4 && fw.number_of_smooth_edges() == 4 && fn.number_of_smooth_edges() == 0);
   }
 }
 

@@ -193,7 +193,7 @@ int main(int argc, char** argv)
       "--strict); 3 output error (exists without --force, or not writable); 4 the mesh failed a validity\n"
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
   std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, feature_files;
-  double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0;
+  double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0, feature_scale = -1, feature_contrast = 3;
   double curvature_size = 0, curvature_angle = 30, thin_size = 0;
   int thin_cells = 0;
   std::string box_s, region = "inside", surface_size_s;
@@ -218,6 +218,16 @@ int main(int argc, char** argv)
   auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
   app.add_option("--feature-angle", feature_angle, "an edge whose face normals differ by at least this many degrees is a "
                                                    "feature (default 30)")->check(CLI::Range(0.0, 180.0));
+  app.add_option("--feature-scale", feature_scale, "a sharp edge must also be sharp with the input's normals averaged this far "
+                                                   "on each side, or its curve is left out (the creases of a coarse "
+                                                   "triangulation of a smooth shape); 0 keeps every sharp edge "
+                                                   "(default: half the smallest of the surface, curvature and feature sizes)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--feature-contrast", feature_contrast, "a sharp edge must also have at least this many times the mean "
+                                                         "angle of the other edges around it, or its curve is left out "
+                                                         "(a coarse triangulation of a smooth shape); 0 keeps every sharp "
+                                                         "edge (default 3)")
+      ->check(CLI::NonNegativeNumber);
   auto* fsize_opt = app.add_option("--feature-size", feature_size, "largest edge of cells meeting a feature edge (sharp, open, "
                                                                    "non-manifold or part-border edges; default: no such criterion)");
   app.add_option("--features", feature_files, "OBJ file of feature lines ('l' polylines, optionally .gz): cells they "
@@ -365,10 +375,23 @@ int main(int argc, char** argv)
                 << (domain.has_exact_inside_test() ? "exact (closed surface)" : "winding number (open or inconsistent surface)")
                 << "\n";
     }
+    const CGAL::Bbox_3 bb = domain.bbox();
+    const double extent = (std::max)({bb.xmax() - bb.xmin(), bb.ymax() - bb.ymin(), bb.zmax() - bb.zmin()});
+    if(size <= 0) size = (has_box ? (std::max)({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()}) / 1.2
+                                  : extent) / 10;
+    if(surface_size <= 0) surface_size = size / 4;
     // feature curves: reported, and refined to --feature-size; snapping to them comes next
     t = std::chrono::steady_clock::now();
     HM::Feature_curves_3<K>::Options fopt;
     fopt.feature_angle = feature_angle;
+    if(feature_scale < 0) {
+      double finest = surface_size;
+      if(curvature_size > 0) finest = (std::min)(finest, curvature_size);
+      if(feature_size > 0) finest = (std::min)(finest, feature_size);
+      feature_scale = finest / 2;
+    }
+    fopt.scale = feature_scale;
+    fopt.contrast = feature_contrast;
     const HM::Feature_curves_3<K> features(domain, fopt);
     if(feature_size > 0) domain.set_feature_edges(features.edge_vertices());
     std::vector<std::vector<Point_3>> user_lines;
@@ -383,13 +406,13 @@ int main(int argc, char** argv)
     if(!quiet)
       std::cerr << "hexmesh: features (" << feature_angle << " degrees): " << features.number_of_edges(FC::SHARP) << " sharp, "
                 << features.number_of_edges(FC::OPEN) << " open, " << features.number_of_edges(FC::NON_MANIFOLD)
-                << " non-manifold, " << features.number_of_edges(FC::PATCH_BORDER) << " part-border edges; "
+                << " non-manifold, " << features.number_of_edges(FC::PATCH_BORDER) << " part-border edges";
+    if(!quiet && features.number_of_smooth_edges())
+      std::cerr << " (" << features.number_of_smooth_edges() << " sharp edges left out: not sharp at the scale "
+                << feature_scale << " or not standing out " << feature_contrast << " times from the edges around)";
+    if(!quiet)
+      std::cerr << "; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
-    const CGAL::Bbox_3 bb = domain.bbox();
-    const double extent = (std::max)({bb.xmax() - bb.xmin(), bb.ymax() - bb.ymin(), bb.zmax() - bb.zmin()});
-    if(size <= 0) size = (has_box ? (std::max)({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()}) / 1.2
-                                  : extent) / 10;
-    if(surface_size <= 0) surface_size = size / 4;
     Criteria criteria(size, surface_size, max_level);
     if(feature_size > 0) criteria.set_feature_size(feature_size);
     if(curvature_size > 0) criteria.set_curvature_size(curvature_size, curvature_angle);
@@ -576,6 +599,7 @@ int main(int argc, char** argv)
                      {"sheet_triangles", sum.sheet_triangles}, {"reoriented_triangles", sum.reoriented_triangles},
                      {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles}};
       j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
+                       {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},
                        {"open_edges", features.number_of_edges(FC::OPEN)},
                        {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},
                        {"part_border_edges", features.number_of_edges(FC::PATCH_BORDER)},

@@ -50,6 +50,25 @@ public:
     bool open_edges = true;
     bool non_manifold_edges = true;
     bool patch_borders = true;
+    /// a length; 0 (the default) keeps every sharp edge. Otherwise sharp edges are judged at this
+    /// scale too: the normals of the input faces within `scale` on either side of an edge,
+    /// averaged by area, must still differ by at least the feature angle, and a curve of sharp
+    /// edges is kept only if at least half its length passes. The creases of a coarse
+    /// triangulation of a smooth shape fail (the averages meet around a short crease's ends, or
+    /// across many shallow ones); a CAD edge between faces wider than `scale` passes. Open,
+    /// non-manifold and part-border edges are always kept. `make_hex_mesh_3()` uses half the
+    /// surface size when it builds the curves itself.
+    double scale = 0;
+    /// a ratio; 0 (the default) keeps every sharp edge. Otherwise a sharp edge must also stand
+    /// out from the input around it: its dihedral angle must be at least `contrast` times the
+    /// mean angle of the non-sharp edges of the faces around it (its two faces and their
+    /// neighbours), unless it is at least twice the feature angle; a curve of sharp edges is kept
+    /// only if at least half its length passes.
+    /// A coarse triangulation of a smooth shape has 30 degree edges among 10-15 degree ones (the
+    /// test data's eight, bunny, elephant: median ratio 2.7-3.5); a CAD edge between flat or
+    /// finely triangulated faces has a ratio of 20 or more. `make_hex_mesh_3()` uses 3 when it
+    /// builds the curves itself.
+    double contrast = 0;
   };
 
   struct Edge { std::array<Index, 2> vertices; std::uint8_t kind; };
@@ -80,6 +99,9 @@ public:
   {
     return std::size_t(std::count_if(m_edges.begin(), m_edges.end(), [k](const Edge& e) { return (e.kind & k) != 0; }));
   }
+  /// the sharp edges left out because they are not sharp at `Options::scale` or do not stand out
+  /// by `Options::contrast`
+  std::size_t number_of_smooth_edges() const { return m_smooth_edges; }
 
 private:
   typedef std::array<double, 3> V;
@@ -107,14 +129,29 @@ private:
       normal[f] = unit(cross(sub(b, a), sub(c, a)));
     }
     // (edge, face, direction) sorted by edge
-    struct Half { std::uint64_t key; Index face; bool forward; };
+    struct Half { std::uint64_t key; Index face; bool forward; std::uint8_t slot; };
     std::vector<Half> half;
     half.reserve(3 * tris.size());
     for(std::size_t f = 0; f < tris.size(); ++f)
       for(int k = 0; k < 3; ++k) {
         const Index u = tris[f][std::size_t(k)], v = tris[f][std::size_t((k + 1) % 3)];
-        half.push_back({u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u), Index(f), u < v});
+        half.push_back({u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u), Index(f), u < v,
+                        std::uint8_t(k)});
       }
+    const bool judge = o.scale > 0 || o.contrast > 0;
+    // for the judgement at a scale: the face across each side (none at open and non-manifold
+    // edges), whether it is oriented the same way, and the feature edge on each side
+    const Index none = Index(-1);
+    std::vector<Index> across;
+    std::vector<char> same_way;
+    std::vector<float> slot_angle;   // degrees, at manifold edges
+    std::vector<std::array<Index, 2>> edge_faces;   // per feature edge, its two faces (or none)
+    std::vector<char> edge_consistent;
+    if(judge) {
+      across.assign(3 * tris.size(), none);
+      same_way.assign(3 * tris.size(), 1);
+      slot_angle.assign(3 * tris.size(), -1.f);
+    }
     std::sort(half.begin(), half.end(), [](const Half& a, const Half& b) {
       return a.key != b.key ? a.key < b.key : a.face < b.face;
     });
@@ -132,12 +169,168 @@ private:
         if(d.is_two_sided(h.face) || d.is_two_sided(g.face)) c = std::abs(c);   // sheets: unsigned
         else if(h.forward == g.forward) c = -c;   // inconsistent orientation across the edge
         if(c <= cos_max) kind |= SHARP;
+        if(judge)
+          slot_angle[3 * h.face + h.slot] = slot_angle[3 * g.face + g.slot] =
+            float(std::acos((std::max)(-1.0, (std::min)(1.0, c))) * 180.0 / CGAL_PI);
         if(o.patch_borders && d.patch(h.face) != d.patch(g.face)) kind |= PATCH_BORDER;
       }
-      if(kind) m_edges.push_back({{Index(half[i].key >> 32), Index(half[i].key & 0xffffffffu)}, kind});
+      if(judge && deg == 2) {
+        const Half& h = half[i];
+        const Half& g = half[i + 1];
+        across[3 * h.face + h.slot] = g.face;
+        across[3 * g.face + g.slot] = h.face;
+        same_way[3 * h.face + h.slot] = same_way[3 * g.face + g.slot] = char(h.forward != g.forward);
+      }
+      if(kind) {
+        m_edges.push_back({{Index(half[i].key >> 32), Index(half[i].key & 0xffffffffu)}, kind});
+        if(judge) {
+          edge_faces.push_back(deg == 2 ? std::array<Index, 2>{{half[i].face, half[i + 1].face}}
+                                        : std::array<Index, 2>{{none, none}});
+          edge_consistent.push_back(char(deg == 2 && half[i].forward != half[i + 1].forward));
+        }
+      }
       i = j;
     }
+    if(judge) judge_at_scale(d, o, cos_max, across, same_way, slot_angle, edge_faces, edge_consistent);
     chain(cos_max);
+  }
+
+  // leaves out the curves of sharp edges that are not sharp at `o.scale` (see `Options::scale`)
+  void judge_at_scale(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max,
+                      const std::vector<Index>& across, const std::vector<char>& same_way,
+                      const std::vector<float>& slot_angle, const std::vector<std::array<Index, 2>>& edge_faces, const std::vector<char>& edge_consistent)
+  {
+    const auto& tris = d.triangle_indices();
+    const Index none = Index(-1);
+    const double r2 = o.scale * o.scale;
+    std::vector<Index> seen(tris.size(), none);
+    Index stamp = 0;
+    std::vector<std::pair<Index, double>> queue;
+    auto centroid = [&](Index f) {
+      const V a = vec(m_points[tris[f][0]]), b = vec(m_points[tris[f][1]]), c = vec(m_points[tris[f][2]]);
+      return V{{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3}};
+    };
+    auto near = [&](Index f, const V& m) {
+      for(int k = 0; k < 3; ++k) {
+        const V dp = sub(vec(m_points[tris[f][std::size_t(k)]]), m);
+        if(dot(dp, dp) <= r2) return true;
+      }
+      const V dc = sub(centroid(f), m);
+      return dot(dc, dc) <= r2;
+    };
+    // the direction, in face f's plane and across edge (p, q), that points into f
+    auto inward = [&](Index f, const V& p, const V& q) {
+      const V a = vec(m_points[tris[f][0]]), b = vec(m_points[tris[f][1]]), c = vec(m_points[tris[f][2]]);
+      const V n = cross(sub(b, a), sub(c, a));
+      V t = unit(cross(n, sub(q, p)));
+      if(dot(t, sub(centroid(f), p)) < 0) for(double& x : t) x = -x;
+      return t;
+    };
+    // the input faces within the scale of an edge's midpoint, reached across manifold edges
+    // from its first face, split in two by the plane through the edge that bisects its two
+    // faces; the area-weighted normals of the two sides (oriented as each side's edge face)
+    const std::size_t max_faces = 4096;
+    auto sides = [&](Index e, std::array<V, 2>& n) {
+      const std::array<Index, 2>& fs = edge_faces[e];
+      const V p = vec(m_points[m_edges[e].vertices[0]]), q = vec(m_points[m_edges[e].vertices[1]]);
+      const V m = {{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}};
+      const V t0 = inward(fs[0], p, q), t1 = inward(fs[1], p, q);
+      V split = unit(sub(t0, t1));   // side 0 is where it points
+      if(dot(split, split) == 0) split = t0;
+      ++stamp;
+      queue.clear();
+      queue.push_back({fs[0], 1.0});
+      seen[fs[0]] = stamp;
+      n[0] = n[1] = V{{0, 0, 0}};
+      double sign1 = edge_consistent[e] ? 1.0 : -1.0;   // the second face's orientation, as seen from the first
+      for(std::size_t i = 0; i < queue.size() && i < max_faces; ++i) {
+        const Index f = queue[i].first;
+        const double sg = queue[i].second;
+        const V a = vec(m_points[tris[f][0]]), b = vec(m_points[tris[f][1]]), c = vec(m_points[tris[f][2]]);
+        const V w = cross(sub(b, a), sub(c, a));
+        const int side = f == fs[0] ? 0 : f == fs[1] ? 1 : (dot(sub(centroid(f), m), split) >= 0 ? 0 : 1);
+        const double s1 = side == 1 ? sg * sign1 : sg;   // side 1 oriented as the second face
+        for(std::size_t k = 0; k < 3; ++k) n[std::size_t(side)][k] += s1 * w[k];
+        for(std::size_t k = 0; k < 3; ++k) {
+          const Index g = across[3 * f + k];
+          if(g == none || seen[g] == stamp || !near(g, m)) continue;
+          seen[g] = stamp;
+          queue.push_back({g, same_way[3 * f + k] ? sg : -sg});
+        }
+      }
+      if(seen[fs[1]] != stamp)   // not reached (a thin sliver): its own normal
+        n[1] = cross(sub(vec(m_points[tris[fs[1]][1]]), vec(m_points[tris[fs[1]][0]])),
+                     sub(vec(m_points[tris[fs[1]][2]]), vec(m_points[tris[fs[1]][0]])));
+      n[0] = unit(n[0]);
+      n[1] = unit(n[1]);
+    };
+    // the edge's angle against the mean angle of the non-sharp edges of the faces around it
+    const double feature_angle = std::acos(cos_max) * 180.0 / CGAL_PI;
+    std::vector<Index> ring;
+    auto stands_out = [&](Index e) {
+      const std::array<Index, 2>& fs = edge_faces[e];
+      ring.assign(fs.begin(), fs.end());
+      for(Index f : fs)
+        for(std::size_t k = 0; k < 3; ++k) if(across[3 * f + k] != none) ring.push_back(across[3 * f + k]);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      double sum = 0, own = 0;
+      std::size_t n = 0;
+      for(Index f : ring)
+        for(std::size_t k = 0; k < 3; ++k) {
+          const float a = slot_angle[3 * f + k];
+          if(a < 0) continue;
+          const Index g = across[3 * f + k];
+          if((f == fs[0] && g == fs[1]) || (f == fs[1] && g == fs[0])) { own = a; continue; }
+          if(a < feature_angle) { sum += a; ++n; }   // (each inner edge counts from both faces)
+        }
+      return n == 0 || own >= 2 * feature_angle || own >= o.contrast * sum / double(n);
+    };
+    std::vector<char> kept(m_edges.size(), 1);
+    m_corners.clear();
+    m_curves.clear();
+    chain(cos_max);
+    auto edge_index = [&](Index u, Index v) {
+      const std::uint64_t key = u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u);
+      const auto it = std::lower_bound(m_edges.begin(), m_edges.end(), key, [](const Edge& x, std::uint64_t k) {
+        return (std::uint64_t(x.vertices[0]) << 32 | x.vertices[1]) < k;
+      });
+      return Index(it - m_edges.begin());
+    };
+    for(const Curve& cv : m_curves) {
+      const std::size_t nv = cv.vertices.size();
+      std::vector<Index> es;
+      for(std::size_t k = 0; k + 1 < nv + (cv.closed ? 1 : 0); ++k)
+        es.push_back(edge_index(cv.vertices[k], cv.vertices[(k + 1) % nv]));
+      bool only_sharp = !es.empty();
+      for(Index e : es) only_sharp = only_sharp && m_edges[e].kind == SHARP;
+      if(!only_sharp) continue;
+      double len = 0, sharp = 0;
+      for(Index e : es) {
+        const V p = vec(m_points[m_edges[e].vertices[0]]), q = vec(m_points[m_edges[e].vertices[1]]);
+        const double l = std::sqrt(dot(sub(q, p), sub(q, p)));
+        len += l;
+        if(o.scale > 0) {
+          std::array<V, 2> n;
+          sides(e, n);
+          double c = dot(n[0], n[1]);
+          if(d.is_two_sided(edge_faces[e][0]) || d.is_two_sided(edge_faces[e][1])) c = std::abs(c);
+          else if(!edge_consistent[e]) c = -c;
+          if(c > cos_max) continue;
+        }
+        if(o.contrast > 0 && !stands_out(e)) continue;
+        sharp += l;
+      }
+      if(sharp < 0.5 * len)
+        for(Index e : es) kept[e] = 0;
+    }
+    m_corners.clear();
+    m_curves.clear();
+    std::vector<Edge> cur;
+    for(std::size_t e = 0; e < m_edges.size(); ++e)
+      if(kept[e]) cur.push_back(m_edges[e]);
+    m_smooth_edges = m_edges.size() - cur.size();
+    m_edges.swap(cur);
   }
 
   // corners and polylines
@@ -200,6 +393,7 @@ private:
   std::vector<Edge> m_edges;
   std::vector<Curve> m_curves;
   std::vector<Index> m_corners;
+  std::size_t m_smooth_edges = 0;
 };
 
 } // namespace Hex_meshing_3
