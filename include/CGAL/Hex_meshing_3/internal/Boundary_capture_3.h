@@ -271,7 +271,8 @@ public:
     double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
     double max_skewness = 3.5;         ///< buffer cells at a face more skewed than this are removed (OpenFOAM fails > 4)
     double min_face_split_quality = 0.05;   ///< cells whose faces split worse than this are repaired last
-    int face_split_passes = 4;              ///< sweeps of that repair
+    int face_split_passes = 4;              ///< sweeps of that repair (and of the split-face warp's)
+    double max_split_face_warp = 0.05;      ///< faces split in four warped beyond this (x edge) are repaired last
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -297,6 +298,7 @@ public:
     // a cancellation stops the smoothing sweeps only: the steps that make every cell valid run
     optimise(visitor);
     repair_face_splits();
+    repair_split_face_warp();
     assign_patches();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
@@ -977,6 +979,7 @@ private:
     Vec3 x[8];
     corners(c, x);
     const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
+    if(use_split_warp) return (std::min)(q, split_warp_quality(c, x));
     if(!use_face_splits) return q;
     // in the face-split repair only (see `repair_face_splits()`), and only where a split fails or
     // nearly does
@@ -1043,7 +1046,7 @@ private:
     base_old.resize(cells.size());
     // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
     double nonortho_cap = 0;
-    if(use_face_splits) {
+    if(use_face_splits || use_split_warp) {
       for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_sj(cells[i]);
       nonortho_cap = (std::max)(60.0, max_non_orthogonality(cells));
     }
@@ -1060,11 +1063,11 @@ private:
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const double q = cell_quality(cells[i]);
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
-        if(use_face_splits && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
+        if((use_face_splits || use_split_warp) && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
         f = (std::min)(f, q);
         mean += q;
       }
-      if(use_face_splits && max_non_orthogonality(cells) > nonortho_cap) return;
+      if((use_face_splits || use_split_warp) && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
       if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; }
     };
@@ -1405,6 +1408,88 @@ private:
     use_face_splits = false;
   }
 
+  // the warp of a cell's face: the largest distance of its corners from the plane through their
+  // average normal to the diagonals' cross product, over its mean edge length
+  static double face_warp(const Vec3* x, const std::array<int, 4>& f)
+  {
+    const Vec3& a = x[f[0]];
+    const Vec3& b = x[f[1]];
+    const Vec3& c = x[f[2]];
+    const Vec3& d = x[f[3]];
+    Vec3 n = cross(sub(c, a), sub(d, b));
+    const double ln = norm(n);
+    const double L = (norm(sub(b, a)) + norm(sub(c, b)) + norm(sub(d, c)) + norm(sub(a, d))) / 4;
+    if(!(ln > 0) || !(L > 0)) return 1;
+    n = mul(n, 1.0 / ln);
+    const Vec3 m = mul(add(add(a, b), add(c, d)), 0.25);
+    double w = 0;
+    for(const Vec3* p : {&a, &b, &c, &d}) w = (std::max)(w, std::abs(dot(sub(*p, m), n)));
+    return w / L;
+  }
+  // 1 for flat faces split in four, 0 at `opt.max_split_face_warp` x 2
+  double split_warp_quality(Index c, const Vec3* x) const
+  {
+    double q = 1;
+    if(c < split_faces.size())
+      for(std::uint8_t fi : split_faces[c]) {
+        const auto& lf = hex_local_faces()[fi];
+        const std::array<int, 4> f{{int(lf[0]), int(lf[1]), int(lf[2]), int(lf[3])}};
+        q = (std::min)(q, 1 - face_warp(x, f) / (2 * opt.max_split_face_warp));
+      }
+    return q;
+  }
+
+  // A coarse cell's face split in four by a face node is written as four quarters meeting at
+  // the node: on a warped face they form a saddle, whose diagonal quarters face each other, and
+  // OpenFOAM calls the cell concave (checkMesh -allGeometry) unless the node's bulge outruns the
+  // warp. The cells with such a face warped beyond `opt.max_split_face_warp` have their vertices
+  // moved by `improve()`, the warp counted in their quality, under the face-split repair's guards.
+  void repair_split_face_warp()
+  {
+    split_faces.assign(m.hexahedra.size(), {});
+    bool any = false;
+    for(const auto& hn : m.hanging_nodes) {
+      if(hn.number_of_masters != 4) continue;
+      std::array<Index, 4> k{{hn.masters[0], hn.masters[1], hn.masters[2], hn.masters[3]}};
+      std::sort(k.begin(), k.end());
+      // the coarse cell: a cell of the first master having the four as one of its faces
+      for(Index i = cstart[k[0]]; i < cstart[k[0] + 1]; ++i) {
+        const Index c = cinc[i];
+        for(int fi = 0; fi < 6; ++fi) {
+          std::array<Index, 4> f;
+          for(int j = 0; j < 4; ++j) f[std::size_t(j)] = m.hexahedra[c][std::size_t(hex_local_faces()[std::size_t(fi)][std::size_t(j)])];
+          std::sort(f.begin(), f.end());
+          if(f == k) { split_faces[c].push_back(std::uint8_t(fi)); any = true; }
+        }
+      }
+    }
+    if(!any) return;
+    std::vector<Index> cells, work;
+    std::vector<char> in_work(P.size(), 0);
+    use_split_warp = true;
+    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
+      for(Index c = 0; c < m.hexahedra.size(); ++c) {
+        if(split_faces[c].empty()) continue;
+        Vec3 x[8];
+        corners(c, x);
+        if(!(split_warp_quality(c, x) < 0.5)) continue;
+        for(Index v : m.hexahedra[c]) {
+          if(kind[v] == HANGING) {
+            for(const auto& hm : hang_masters[hang_of[v]]) if(movable(hm.first) && !in_work[hm.first]) { in_work[hm.first] = 1; work.push_back(hm.first); }
+          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
+        }
+      }
+      if(work.empty()) break;
+      std::sort(work.begin(), work.end());
+      std::size_t moved = 0;
+      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
+      rep.split_warp_repairs += moved;
+      work.clear();
+      if(moved == 0) break;
+    }
+    use_split_warp = false;
+  }
+
   // The last resort: a buffer cell the optimisation could not make valid is removed; the staircase
   // face under it and the side faces of its buffer neighbours become boundary faces (of the top
   // face's patch). Interior cells cannot be invalid: they start valid and no move makes a valid
@@ -1567,6 +1652,8 @@ private:
   std::vector<int> face_region, vregion, tri_region;
   bool cancelled = false;
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
+  bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
+  std::vector<std::vector<std::uint8_t>> split_faces;   // per cell: its local faces split in four by a face node
   double sj_floor = 0.2;          // in the repair: nor below min(its scaled Jacobian, this)
   std::vector<double> base_old;   // improve(), in the repair: the scaled Jacobians before the move
   std::vector<std::array<Index, 6>> face_neighbour;   // in the repair: the cell across each whole face
