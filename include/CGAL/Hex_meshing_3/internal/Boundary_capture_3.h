@@ -273,6 +273,7 @@ public:
     double min_face_split_quality = 0.05;   ///< cells whose faces split worse than this are repaired last
     int face_split_passes = 4;              ///< sweeps of that repair (and of the split-face warp's)
     double max_split_face_warp = 0.05;      ///< faces split in four warped beyond this (x edge) are repaired last
+    double max_non_orthogonality = 50;      ///< degrees: the cells at faces beyond it are worked on after the repairs
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -299,6 +300,7 @@ public:
     optimise(visitor);
     repair_face_splits();
     repair_split_face_warp();
+    reduce_non_orthogonality();
     assign_patches();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
@@ -980,6 +982,10 @@ private:
     corners(c, x);
     const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
     if(use_split_warp) return (std::min)(q, split_warp_quality(c, x));
+    if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
+      const double a = max_non_orthogonality(std::vector<Index>{c});
+      return q <= 0 ? q : a <= opt.max_non_orthogonality ? 1.0 : 1 - (a - opt.max_non_orthogonality) / (90 - opt.max_non_orthogonality);
+    }
     if(!use_face_splits) return q;
     // in the face-split repair only (see `repair_face_splits()`), and only where a split fails or
     // nearly does
@@ -1046,7 +1052,7 @@ private:
     base_old.resize(cells.size());
     // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
     double nonortho_cap = 0;
-    if(use_face_splits || use_split_warp) {
+    if(use_face_splits || use_split_warp || use_non_orthogonality) {
       for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_sj(cells[i]);
       nonortho_cap = (std::max)(60.0, max_non_orthogonality(cells));
     }
@@ -1063,7 +1069,7 @@ private:
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const double q = cell_quality(cells[i]);
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
-        if((use_face_splits || use_split_warp) && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
+        if((use_face_splits || use_split_warp || use_non_orthogonality) && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
         f = (std::min)(f, q);
         mean += q;
       }
@@ -1439,6 +1445,39 @@ private:
     return q;
   }
 
+  // Maximise the minimum scaled Jacobian, then reduce the non-orthogonality: the cells with a whole
+  // face whose non-orthogonality (from the vertex averages) is beyond `opt.max_non_orthogonality`
+  // have their vertices moved by `improve()` with the worst face's angle as their quality (1 up to
+  // the limit, 0 at 90 degrees). Guards: no cell's scaled Jacobian falls below min(its own,
+  // max(0.3, the mesh's minimum)), no cell becomes worse than min(its angle quality, keep_quality).
+  void reduce_non_orthogonality()
+  {
+    std::vector<Index> cells, work;
+    std::vector<char> in_work(P.size(), 0);
+    const double floor_before = sj_floor;
+    sj_floor = (std::max)(0.3, sj_floor);
+    use_non_orthogonality = true;
+    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
+      for(Index c = 0; c < m.hexahedra.size(); ++c) {
+        if(!(max_non_orthogonality(std::vector<Index>{c}) > opt.max_non_orthogonality)) continue;
+        for(Index v : m.hexahedra[c]) {
+          if(kind[v] == HANGING) {
+            for(const auto& hm : hang_masters[hang_of[v]]) if(movable(hm.first) && !in_work[hm.first]) { in_work[hm.first] = 1; work.push_back(hm.first); }
+          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
+        }
+      }
+      if(work.empty()) break;
+      std::sort(work.begin(), work.end());
+      std::size_t moved = 0;
+      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
+      rep.non_orthogonality_repairs += moved;
+      work.clear();
+      if(moved == 0) break;
+    }
+    use_non_orthogonality = false;
+    sj_floor = floor_before;
+  }
+
   // A coarse cell's face split in four by a face node is written as four quarters meeting at
   // the node: on a warped face they form a saddle, whose diagonal quarters face each other, and
   // OpenFOAM calls the cell concave (checkMesh -allGeometry) unless the node's bulge outruns the
@@ -1653,6 +1692,7 @@ private:
   bool cancelled = false;
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
+  bool use_non_orthogonality = false;   // cell_quality() is the worst face's non-orthogonality (that repair)
   std::vector<std::vector<std::uint8_t>> split_faces;   // per cell: its local faces split in four by a face node
   double sj_floor = 0.2;          // in the repair: nor below min(its scaled Jacobian, this)
   std::vector<double> base_old;   // improve(), in the repair: the scaled Jacobians before the move
