@@ -21,6 +21,26 @@
 
 namespace CGAL {
 
+namespace Hex_meshing_3 {
+/*!
+ * \ingroup PkgHexMeshing3Domains
+ * \brief the options `make_hex_mesh_3()` builds its `Feature_curves_3` with when it is given none:
+ * 30 degrees, sharp edges judged at half the smallest of the criteria's surface, curvature and
+ * feature sizes (`Options::scale`) and by a contrast of 3 (`Options::contrast`)
+ */
+template <typename GeomTraits, typename Criteria>
+typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(const Criteria& criteria)
+{
+  double finest = CGAL::to_double(criteria.surface_size());
+  if(criteria.curvature_size() > 0) finest = (std::min)(finest, CGAL::to_double(criteria.curvature_size()));
+  if(criteria.feature_size() > 0) finest = (std::min)(finest, CGAL::to_double(criteria.feature_size()));
+  typename Feature_curves_3<GeomTraits>::Options o;
+  o.scale = finest / 2;
+  o.contrast = 3;
+  return o;
+}
+} // namespace Hex_meshing_3
+
 /*!
  * \ingroup PkgHexMeshing3Functions
  * \brief fills `out` with the hexahedra of an overlay grid refined by `criteria` over the region
@@ -156,14 +176,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     typedef Hex_meshing_3::Feature_curves_3<GT> Features;
     std::unique_ptr<Features> own;
     const Features* features = choose_parameter(get_parameter(np, HNP::feature_curves), static_cast<const Features*>(nullptr));
-    if(!features) {   // sharp edges judged at half the finest size asked for the surface, and by contrast
-      typename Features::Options fo;
-      double finest = CGAL::to_double(criteria.surface_size());
-      if(criteria.curvature_size() > 0) finest = (std::min)(finest, CGAL::to_double(criteria.curvature_size()));
-      if(criteria.feature_size() > 0) finest = (std::min)(finest, CGAL::to_double(criteria.feature_size()));
-      fo.scale = finest / 2;
-      fo.contrast = 3;
-      own = std::make_unique<Features>(domain, fo);
+    if(!features) {
+      own = std::make_unique<Features>(domain, Hex_meshing_3::default_feature_curve_options<GT>(criteria));
       features = own.get();
     }
     visitor.on_phase_begin("capture", out.number_of_cells());

@@ -380,17 +380,18 @@ int main(int argc, char** argv)
     if(size <= 0) size = (has_box ? (std::max)({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()}) / 1.2
                                   : extent) / 10;
     if(surface_size <= 0) surface_size = size / 4;
-    // feature curves: reported, and refined to --feature-size; snapping to them comes next
+    Criteria criteria(size, surface_size, max_level);
+    if(feature_size > 0) criteria.set_feature_size(feature_size);
+    if(curvature_size > 0) criteria.set_curvature_size(curvature_size, curvature_angle);
+    if(thin_size <= 0) thin_size = surface_size / 4;
+    if(thin_cells > 0) criteria.set_thin_part_refinement(thin_cells, thin_size);
+    for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
+    // feature curves: reported, refined to --feature-size, followed by the boundary
     t = std::chrono::steady_clock::now();
-    HM::Feature_curves_3<K>::Options fopt;
+    HM::Feature_curves_3<K>::Options fopt = HM::default_feature_curve_options<K>(criteria);
     fopt.feature_angle = feature_angle;
-    if(feature_scale < 0) {
-      double finest = surface_size;
-      if(curvature_size > 0) finest = (std::min)(finest, curvature_size);
-      if(feature_size > 0) finest = (std::min)(finest, feature_size);
-      feature_scale = finest / 2;
-    }
-    fopt.scale = feature_scale;
+    if(feature_scale >= 0) fopt.scale = feature_scale;
+    feature_scale = fopt.scale;
     fopt.contrast = feature_contrast;
     const HM::Feature_curves_3<K> features(domain, fopt);
     if(feature_size > 0) domain.set_feature_edges(features.edge_vertices());
@@ -413,12 +414,6 @@ int main(int argc, char** argv)
     if(!quiet)
       std::cerr << "; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
-    Criteria criteria(size, surface_size, max_level);
-    if(feature_size > 0) criteria.set_feature_size(feature_size);
-    if(curvature_size > 0) criteria.set_curvature_size(curvature_size, curvature_angle);
-    if(thin_size <= 0) thin_size = surface_size / 4;
-    if(thin_cells > 0) criteria.set_thin_part_refinement(thin_cells, thin_size);
-    for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
 
     Mesh mesh;
     HM::Status status;

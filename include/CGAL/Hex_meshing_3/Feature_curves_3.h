@@ -191,12 +191,13 @@ private:
       }
       i = j;
     }
-    if(judge) judge_at_scale(d, o, cos_max, across, same_way, slot_angle, edge_faces, edge_consistent);
+    if(judge) judge_sharp_edges(d, o, cos_max, across, same_way, slot_angle, edge_faces, edge_consistent);
     chain(cos_max);
   }
 
-  // leaves out the curves of sharp edges that are not sharp at `o.scale` (see `Options::scale`)
-  void judge_at_scale(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max,
+  // leaves out the curves of sharp edges that are not sharp at `o.scale` or do not stand out by
+  // `o.contrast` (see `Options::scale` and `Options::contrast`)
+  void judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max,
                       const std::vector<Index>& across, const std::vector<char>& same_way,
                       const std::vector<float>& slot_angle, const std::vector<std::array<Index, 2>>& edge_faces, const std::vector<char>& edge_consistent)
   {

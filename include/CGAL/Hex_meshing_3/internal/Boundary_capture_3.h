@@ -983,7 +983,7 @@ private:
     const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
     if(use_split_warp) return (std::min)(q, split_warp_quality(c, x));
     if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
-      const double a = max_non_orthogonality(std::vector<Index>{c});
+      const double a = cell_non_orthogonality(c);
       return q <= 0 ? q : a <= opt.max_non_orthogonality ? 1.0 : 1 - (a - opt.max_non_orthogonality) / (90 - opt.max_non_orthogonality);
     }
     if(!use_face_splits) return q;
@@ -1174,11 +1174,7 @@ private:
     std::vector<Index> cells, work, low, touched;
     std::vector<char> in_work(P.size(), 0), mark(m.hexahedra.size(), 0);
     for(Index c = 0; c < m.hexahedra.size(); ++c) if(cell_quality(c) < opt.target_quality) low.push_back(c);
-    auto add_vertex = [&](Index v) {
-      if(kind[v] == HANGING) {
-        for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
-      } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
-    };
+    auto add_vertex = [&](Index v) { add_work_vertex(v, work, in_work); };
     // improves the vertices in `work`; returns the number moved and refreshes `low`
     auto sweep = [&](bool smooth_energy) {
       std::sort(work.begin(), work.end());
@@ -1343,8 +1339,6 @@ private:
   // does a face's non-orthogonality rise above max(its own, 60 degrees). Other cells are not touched.
   void repair_face_splits()
   {
-    std::vector<Index> cells, work;
-    std::vector<char> in_work(P.size(), 0);
     double sj_min = 1;
     for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_sj(c));
     sj_floor = (std::max)(0.25, sj_min);
@@ -1381,10 +1375,9 @@ private:
       return (std::max)((std::min)(corner[1], corner[3]), (std::min)(corner[0], corner[2]));
     };
     use_face_splits = true;
-    std::vector<char> failing(m.hexahedra.size(), 0);
-    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
-      // the cells of the faces whose splits fail (or nearly): only they are repaired
-      std::fill(failing.begin(), failing.end(), 0);
+    rep.face_split_repairs += repair_sweeps([&](std::vector<char>& chosen) {
+      // the cells of the faces whose splits fail (or nearly), if their own splits do too
+      std::vector<char> failing(m.hexahedra.size(), 0);
       for(Index c = 0; c < m.hexahedra.size(); ++c)
         for(int fi = 0; fi < 6; ++fi) {
           const Index d = face_neighbour[c][std::size_t(fi)];
@@ -1396,22 +1389,44 @@ private:
       for(Index c = 0; c < m.hexahedra.size(); ++c) {
         Vec3 x[8];
         corners(c, x);
-        if(!failing[c] || !(hex_face_split_quality(x) < opt.min_face_split_quality)) continue;
-        for(Index v : m.hexahedra[c]) {
-          if(kind[v] == HANGING) {
-            for(const auto& x : hang_masters[hang_of[v]]) if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
-          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
-        }
+        chosen[c] = failing[c] && hex_face_split_quality(x) < opt.min_face_split_quality;
       }
+    });
+    use_face_splits = false;
+  }
+
+  // a vertex to improve (the masters of a hanging one), once
+  void add_work_vertex(Index v, std::vector<Index>& work, std::vector<char>& in_work) const
+  {
+    if(kind[v] == HANGING) {
+      for(const auto& x : hang_masters[hang_of[v]])
+        if(movable(x.first) && !in_work[x.first]) { in_work[x.first] = 1; work.push_back(x.first); }
+    } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
+  }
+
+  // The sweeps of the repairs: `select(chosen)` marks the cells to work on, their vertices go
+  // through `improve()` (with the repair's quality and guards), until none moves or after
+  // `opt.face_split_passes` sweeps. Returns the number of moves.
+  template <typename Select>
+  std::size_t repair_sweeps(Select&& select)
+  {
+    std::vector<Index> cells, work;
+    std::vector<char> in_work(P.size(), 0), chosen(m.hexahedra.size(), 0);
+    std::size_t total = 0;
+    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
+      std::fill(chosen.begin(), chosen.end(), 0);
+      select(chosen);
+      for(Index c = 0; c < m.hexahedra.size(); ++c)
+        if(chosen[c]) for(Index v : m.hexahedra[c]) add_work_vertex(v, work, in_work);
       if(work.empty()) break;
       std::sort(work.begin(), work.end());
       std::size_t moved = 0;
       for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
-      rep.face_split_repairs += moved;
+      total += moved;
       work.clear();
       if(moved == 0) break;
     }
-    use_face_splits = false;
+    return total;
   }
 
   // the warp of a cell's face: the largest distance of its corners from the plane through their
@@ -1437,11 +1452,8 @@ private:
   {
     double q = 1;
     if(c < split_faces.size())
-      for(std::uint8_t fi : split_faces[c]) {
-        const auto& lf = hex_local_faces()[fi];
-        const std::array<int, 4> f{{int(lf[0]), int(lf[1]), int(lf[2]), int(lf[3])}};
-        q = (std::min)(q, 1 - face_warp(x, f) / (2 * opt.max_split_face_warp));
-      }
+      for(std::uint8_t fi : split_faces[c])
+        q = (std::min)(q, 1 - face_warp(x, hex_local_faces()[fi]) / (2 * opt.max_split_face_warp));
     return q;
   }
 
@@ -1452,28 +1464,12 @@ private:
   // max(0.3, the mesh's minimum)), no cell becomes worse than min(its angle quality, keep_quality).
   void reduce_non_orthogonality()
   {
-    std::vector<Index> cells, work;
-    std::vector<char> in_work(P.size(), 0);
     const double floor_before = sj_floor;
     sj_floor = (std::max)(0.3, sj_floor);
     use_non_orthogonality = true;
-    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
-      for(Index c = 0; c < m.hexahedra.size(); ++c) {
-        if(!(max_non_orthogonality(std::vector<Index>{c}) > opt.max_non_orthogonality)) continue;
-        for(Index v : m.hexahedra[c]) {
-          if(kind[v] == HANGING) {
-            for(const auto& hm : hang_masters[hang_of[v]]) if(movable(hm.first) && !in_work[hm.first]) { in_work[hm.first] = 1; work.push_back(hm.first); }
-          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
-        }
-      }
-      if(work.empty()) break;
-      std::sort(work.begin(), work.end());
-      std::size_t moved = 0;
-      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
-      rep.non_orthogonality_repairs += moved;
-      work.clear();
-      if(moved == 0) break;
-    }
+    rep.non_orthogonality_repairs += repair_sweeps([&](std::vector<char>& chosen) {
+      for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = cell_non_orthogonality(c) > opt.max_non_orthogonality;
+    });
     use_non_orthogonality = false;
     sj_floor = floor_before;
   }
@@ -1503,29 +1499,15 @@ private:
       }
     }
     if(!any) return;
-    std::vector<Index> cells, work;
-    std::vector<char> in_work(P.size(), 0);
     use_split_warp = true;
-    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
+    rep.split_warp_repairs += repair_sweeps([&](std::vector<char>& chosen) {
       for(Index c = 0; c < m.hexahedra.size(); ++c) {
         if(split_faces[c].empty()) continue;
         Vec3 x[8];
         corners(c, x);
-        if(!(split_warp_quality(c, x) < 0.5)) continue;
-        for(Index v : m.hexahedra[c]) {
-          if(kind[v] == HANGING) {
-            for(const auto& hm : hang_masters[hang_of[v]]) if(movable(hm.first) && !in_work[hm.first]) { in_work[hm.first] = 1; work.push_back(hm.first); }
-          } else if(movable(v) && !in_work[v]) { in_work[v] = 1; work.push_back(v); }
-        }
+        chosen[c] = split_warp_quality(c, x) < 0.5;
       }
-      if(work.empty()) break;
-      std::sort(work.begin(), work.end());
-      std::size_t moved = 0;
-      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
-      rep.split_warp_repairs += moved;
-      work.clear();
-      if(moved == 0) break;
-    }
+    });
     use_split_warp = false;
   }
 
@@ -1703,19 +1685,24 @@ private:
   double max_non_orthogonality(const std::vector<Index>& cells) const
   {
     double worst = 0;
-    for(Index c : cells) {
-      const Vec3 cc = cell_centre(c);
-      for(int fi = 0; fi < 6; ++fi) {
-        const Index d = face_neighbour[c][std::size_t(fi)];
-        if(d == NONE) continue;
-        const auto& f = hex_local_faces()[std::size_t(fi)];
-        const auto& H = m.hexahedra[c];
-        const Vec3 n = cross(sub(P[H[std::size_t(f[2])]], P[H[std::size_t(f[0])]]), sub(P[H[std::size_t(f[3])]], P[H[std::size_t(f[1])]]));
-        const Vec3 e = sub(cell_centre(d), cc);
-        const double l = norm(n) * norm(e);
-        if(!(l > 0)) continue;
-        worst = (std::max)(worst, std::acos((std::max)(-1.0, (std::min)(1.0, dot(n, e) / l))) * 180.0 / CGAL_PI);
-      }
+    for(Index c : cells) worst = (std::max)(worst, cell_non_orthogonality(c));
+    return worst;
+  }
+  // the same over one cell's whole faces
+  double cell_non_orthogonality(Index c) const
+  {
+    double worst = 0;
+    const Vec3 cc = cell_centre(c);
+    for(int fi = 0; fi < 6; ++fi) {
+      const Index d = face_neighbour[c][std::size_t(fi)];
+      if(d == NONE) continue;
+      const auto& f = hex_local_faces()[std::size_t(fi)];
+      const auto& H = m.hexahedra[c];
+      const Vec3 n = cross(sub(P[H[std::size_t(f[2])]], P[H[std::size_t(f[0])]]), sub(P[H[std::size_t(f[3])]], P[H[std::size_t(f[1])]]));
+      const Vec3 e = sub(cell_centre(d), cc);
+      const double l = norm(n) * norm(e);
+      if(!(l > 0)) continue;
+      worst = (std::max)(worst, std::acos((std::max)(-1.0, (std::min)(1.0, dot(n, e) / l))) * 180.0 / CGAL_PI);
     }
     return worst;
   }
