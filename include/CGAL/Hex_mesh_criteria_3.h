@@ -98,6 +98,11 @@ struct Cell_3
  * - user criteria added by `add_criterion()`.
  * No cell is split beyond `max_level` levels below the initial grid.
  *
+ * After refinement the grid is balanced: by default 2:1 across faces and edges. With
+ * `set_cells_between_levels(n)`, n >= 2, every region of one level is surrounded by at least n
+ * cells of the next coarser level before a coarser one (snappyHexMesh's `nCellsBetweenLevels`):
+ * the size grows more slowly away from the surface, at the price of more cells.
+ *
  * \tparam GeomTraits a model of `Kernel`
  */
 template <typename GeomTraits>
@@ -154,6 +159,14 @@ public:
     m_thin_cells = cells;
     m_thin_min_size = min_size;
   }
+  /// every region of one level gets at least `n` cells of the next coarser level around it
+  /// before a coarser one (1: the plain 2:1 balance across faces and edges)
+  /// \pre `n >= 1 && n <= 16`
+  void set_cells_between_levels(int n)
+  {
+    CGAL_precondition(n >= 1 && n <= 16);
+    m_cells_between_levels = n;
+  }
   /// @}
 
   /// \name Access
@@ -170,6 +183,8 @@ public:
   /// the cells asked across thin parts and gaps (0: none), and the smallest size that asks for
   int thin_part_cells() const { return m_thin_cells; }
   FT thin_part_min_size() const { return m_thin_min_size; }
+  /// the cells of each level between two transitions of the balanced grid (1: plain 2:1)
+  int cells_between_levels() const { return m_cells_between_levels; }
   const std::vector<std::pair<Bbox_3, FT>>& refinement_boxes() const { return m_boxes; }
   /// @}
 
@@ -223,6 +238,7 @@ private:
   double m_curvature_angle = 30;
   int m_thin_cells = 0;
   FT m_thin_min_size = 0;
+  int m_cells_between_levels = 1;
   std::vector<std::pair<Bbox_3, FT>> m_boxes;
   std::vector<std::function<Is_cell_bad(const Cell&)>> m_extra;
 };

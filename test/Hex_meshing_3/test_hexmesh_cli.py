@@ -187,6 +187,11 @@ def main():
                        "--refine-box", "-0.4,-0.3,-0.6,1.5,0.3,0.6:0.0625", "--region", "seed:-0.9,-0.9,-0.9"],
          "eight_external"),
     ]
+    # cells between levels: the staircase keeps the grid's boxes, so the rule can be checked exactly
+    between = ["--staircase", "--box", "-1,-1,-1,2,1,1", "--size", "0.25", "--surface-size", "0.03125",
+               "--region", "seed:-0.9,-0.9,-0.9"]
+    cases += [("eight.off", between, "eight_between_1"),
+              ("eight.off", between + ["--cells-between-levels", "3"], "eight_between_3")]
     results = {}
     for name, extra, label in cases:
         res = mesh_case(args, name, extra, label)
@@ -200,6 +205,44 @@ def main():
         check(re.search(r"Number of regions: 1 \(OK\)", out) is not None, "a seeded region is one region (checkMesh)")
         for p in ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax", "eight"]:
             check(re.search(r"^\s+%s\s+[1-9]\d*\s" % p, out, re.M) is not None, f"patch {p} has faces")
+
+    # cells between levels: with n = 3, no cell of level <= l-2 comes within 3 cells of level l-1 of
+    # the level-(l-1) box (the parent) of a cell of level l; the plain 2:1 balance breaks that rule
+    print("[cells between levels]")
+    def between_violations(label, n):
+        import meshio
+        import numpy as np
+        vm = meshio.read(os.path.join(args.work, label, "mesh.vtu"))
+        p = vm.points[vm.cells_dict["hexahedron"]]
+        lo, hi = p.min(axis=1), p.max(axis=1)
+        h = (hi - lo).max(axis=1)
+        level = np.rint(np.log2(h.max() / h)).astype(int)   # 0: the initial grid (its cells are the largest)
+        bad, pairs = 0, 0
+        for l in range(2, level.max() + 1):
+            a = np.where(level == l)[0]
+            b = np.where(level <= l - 2)[0]
+            if len(a) == 0 or len(b) == 0:
+                continue
+            hp = 2 * h[a[0]]                          # the parent's size
+            plo = lo[a] - np.mod(lo[a] - lo.min(axis=0), hp) # the parent boxes (lattice from the box corner)
+            plo = np.where(np.abs(np.mod(lo[a] - lo.min(axis=0), hp) - hp) < 1e-9 * hp, lo[a], plo)
+            phi = plo + hp
+            for i in range(0, len(a), 256):
+                g = np.maximum(lo[b][None, :, :] - phi[i:i + 256, None, :], plo[i:i + 256, None, :] - hi[b][None, :, :])
+                gap = g.max(axis=2)                   # Chebyshev gap between the boxes (< 0: overlapping)
+                bad += int((gap < n * hp - 1e-9 * hp).sum())
+            pairs += len(a) * len(b)
+        return bad, pairs, len(level), int(level.max())
+    if "eight_between_1" in results and "eight_between_3" in results:
+        b1, _, n1, l1 = between_violations("eight_between_1", 3)
+        b3, p3, n3, l3 = between_violations("eight_between_3", 3)
+        check(l1 == l3 >= 3, f"the meshes have the same {l3 + 1} levels")
+        check(b1 > 0, f"the plain 2:1 balance has cells of levels two apart within 3 cells ({b1} pairs)")
+        check(b3 == 0, f"--cells-between-levels 3: no such pair ({b3} of {p3} pairs of cells two or more levels apart)")
+        check(n3 > n1, f"--cells-between-levels 3 costs cells: {n3} (2:1: {n1})")
+        r1 = results["eight_between_1"][1]["options"]
+        check(r1.get("cells_between_levels") == 1 and results["eight_between_3"][1]["options"].get("cells_between_levels") == 3,
+              "the report gives the option")
 
     # determinism: byte-identical outputs
     print("[determinism]")

@@ -195,7 +195,7 @@ int main(int argc, char** argv)
   std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, feature_files;
   double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0, feature_scale = -1, feature_contrast = 3;
   double curvature_size = 0, curvature_angle = 30, thin_size = 0;
-  int thin_cells = 0;
+  int thin_cells = 0, cells_between_levels = 1;
   std::string box_s, region = "inside", surface_size_s;
   int max_level = 12;
   std::size_t max_cells = 0;
@@ -213,6 +213,10 @@ int main(int argc, char** argv)
   app.add_option("--thin-cells", thin_cells, "cut cells where the part or the gap is thinner than this many cells are "
                                              "split, down to --thin-size (default 0: no such refinement)")
       ->check(CLI::Range(0, 64));
+  app.add_option("--cells-between-levels", cells_between_levels, "cells of each size around a finer region before the "
+                                                                 "next coarser size (default 1: the plain 2:1 balance; "
+                                                                 "snappyHexMesh's nCellsBetweenLevels)")
+      ->check(CLI::Range(1, 16));
   auto* tsize_opt = app.add_option("--thin-size", thin_size, "smallest cell edge that --thin-cells asks for "
                                                              "(default: surface size / 4)");
   auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
@@ -385,6 +389,7 @@ int main(int argc, char** argv)
     if(curvature_size > 0) criteria.set_curvature_size(curvature_size, curvature_angle);
     if(thin_size <= 0) thin_size = surface_size / 4;
     if(thin_cells > 0) criteria.set_thin_part_refinement(thin_cells, thin_size);
+    criteria.set_cells_between_levels(cells_between_levels);
     for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
     // feature curves: reported, refined to --feature-size, followed by the boundary
     t = std::chrono::steady_clock::now();
@@ -579,7 +584,8 @@ int main(int argc, char** argv)
       j["inputs"] = inputs;
       j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
                       {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
-                      {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"feature_angle", feature_angle},
+                      {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
+                      {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},

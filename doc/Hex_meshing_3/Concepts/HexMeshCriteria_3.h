@@ -60,6 +60,10 @@ public:
   int thin_part_cells() const;
   FT thin_part_min_size() const;
 
+  /// the cells of each level that wrap a finer region before the next coarser level, in [1, 16]:
+  /// 1 asks for the plain 2:1 balance across faces and edges (see the user manual, "Balance")
+  int cells_between_levels() const;
+
   /// @}
 
   /// \name Operations

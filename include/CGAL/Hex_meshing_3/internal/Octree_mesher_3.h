@@ -507,10 +507,42 @@ public:
   // 2:1 balance across every face and edge: processing levels from the finest down, a leaf at
   // level l forces the leaves containing its face and edge neighbours to level >= l-1. Splits
   // only create leaves of levels < l, which are visited later in the same sweep.
+  //
+  // With n = `cells_between_levels()` >= 2 the rule is wider: the leaves containing the lattice
+  // cells of level l-1 within n cells (in each axis) of a leaf's parent are split to level >= l-1,
+  // so every region of level l has at least n cells of level l-1 around it before level l-2
+  // (which implies the 2:1 balance across faces and edges).
   void balance()
   {
     int top = 0;
     for(int l = 0; l < int(m_by_level.size()); ++l) if(!m_by_level[l].empty()) top = l;
+    const int n = m_criteria.cells_between_levels();
+    if(n >= 2) {
+      for(int l = top; l >= 2; --l) {
+        std::vector<std::uint64_t> parents;   // the parents of the leaves of level l, once
+        for(std::uint32_t id : m_by_level[l]) {
+          const Node& nd = m_nodes[id];
+          if(nd.is_leaf())
+            parents.push_back(std::uint64_t(nd.x >> 1) | (std::uint64_t(nd.y >> 1) << KEY_BITS) | (std::uint64_t(nd.z >> 1) << (2 * KEY_BITS)));
+        }
+        std::sort(parents.begin(), parents.end());
+        parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+        const std::uint64_t mask = (std::uint64_t(1) << KEY_BITS) - 1;
+        for(std::uint64_t k : parents) {
+          const std::int64_t px = std::int64_t(k & mask), py = std::int64_t((k >> KEY_BITS) & mask), pz = std::int64_t(k >> (2 * KEY_BITS));
+          for(int dz = -n; dz <= n; ++dz)
+            for(int dy = -n; dy <= n; ++dy)
+              for(int dx = -n; dx <= n; ++dx)
+                for(;;) {
+                  const std::uint32_t j = find(l - 1, px + dx, py + dy, pz + dz);
+                  if(j == NONE || !m_nodes[j].is_leaf() || m_nodes[j].level >= l - 1) break;
+                  split(j);
+                  ++m_stats.balance_splits;
+                }
+        }
+      }
+      return;
+    }
     for(int l = top; l >= 2; --l) {
       for(std::size_t i = 0; i < m_by_level[l].size(); ++i) {
         const Node nd = m_nodes[m_by_level[l][i]];
