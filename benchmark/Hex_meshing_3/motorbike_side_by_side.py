@@ -1,0 +1,195 @@
+#!/usr/bin/python3
+"""The OpenFOAM motorBike, snappyHexMesh and hexmesh side by side, in one run on one core.
+
+snappyHexMesh runs on the tutorial's dictionaries (motorBike/system here) with addLayers false:
+blockMesh, surfaceFeatureExtract, snappyHexMesh -overwrite. hexmesh runs at the matching settings:
+background 1 m in the box (-5,-4,0)-(15,4,8); surfaces 1/32 m, 1/64 m where the normals differ by
+more than 30 degrees (level (5 6), resolveFeatureAngle 30); feature edges 1/64 m (level 6); the
+refinement box (-1,-0.7,0)-(8,0.7,2.5) at 1/16 m (level 4); 3 cells between levels; the seed
+(3.0001,3.0001,0.43). Both are pinned to one core (taskset) and timed by /usr/bin/time.
+
+For each mesher: cells, wall seconds and peak memory (snappy: snappyHexMesh -overwrite, with
+blockMesh and surfaceFeatureExtract apart; hexmesh: from reading to writing), checkMesh
+-allTopology verdict, the concave cells and face-tet (flatness) faces of -allGeometry, max
+non-orthogonality and skewness, hexahedra, and the boundary fidelity: foamToSurface of each mesh,
+box patches left out, measured both ways against the input by surface_distance (the same tool
+for both: area-uniform samples, CGAL AABB tree).
+
+Usage: benchmark/Hex_meshing_3/motorbike_side_by_side.py [--hexmesh PATH] [--work DIR]
+                                                         [--skip-snappy] [--samples N]
+Writes DIR/results.json and prints a table. Needs OpenFOAM (Debian's openfoam) for snappy and
+checkMesh; builds surface_distance (cmake --build build --target surface_distance) if missing.
+"""
+import argparse
+import gzip
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, HERE)
+import run as driver   # noqa: E402  (find_input: ../shared/data, test data, Debian's openfoam-examples)
+
+ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+HEXMESH_OPTIONS = ["--box", "-5,-4,0,15,4,8", "--size", "1", "--surface-size", "0.03125:0.015625",
+                   "--curvature-angle", "30", "--feature-size", "0.015625",
+                   "--refine-box", "-1,-0.7,0,8,0.7,2.5:0.0625", "--cells-between-levels", "3",
+                   "--region", "seed:3.0001,3.0001,0.43"]
+BOX_PATCHES = {"hexmesh": "xmin|xmax|ymin|ymax|zmin|zmax",
+               "snappyHexMesh": "frontAndBack|inlet|outlet|lowerWall|upperWall"}
+
+
+def timed(cmd, cwd, log):
+    """runs cmd pinned to core 0; returns (exit code, wall seconds, peak MiB)"""
+    tfile = log + ".time"
+    full = ["/usr/bin/time", "-f", "%e %M", "-o", tfile]
+    if shutil.which("taskset"):
+        full += ["taskset", "-c", "0"]
+    with open(log, "w") as f:
+        r = subprocess.run(full + cmd, cwd=cwd, env=ENV, stdout=f, stderr=subprocess.STDOUT)
+    try:
+        wall, kb = open(tfile).read().split()[-2:]
+        return r.returncode, float(wall), float(kb) / 1024
+    except (OSError, ValueError):
+        return r.returncode, None, None
+
+
+def checkmesh(case):
+    out = {}
+    r = subprocess.run(["checkMesh", "-case", case, "-constant", "-allTopology"], capture_output=True, text=True, env=ENV)
+    failed = re.search(r"Failed (\d+) mesh checks", r.stdout)
+    out["allTopology"] = "Mesh OK" if "Mesh OK" in r.stdout else (f"Failed {failed.group(1)}" if failed else "no verdict")
+    out["allTopology_flags"] = [l.strip() for l in r.stdout.splitlines() if l.strip().startswith("***")]
+    r = subprocess.run(["checkMesh", "-case", case, "-constant", "-allTopology", "-allGeometry"], capture_output=True,
+                       text=True, env=ENV)
+    s = r.stdout
+    get = lambda pat, conv=float: (conv(m.group(1)) if (m := re.search(pat, s)) else None)
+    out["allGeometry"] = "Mesh OK" if "Mesh OK" in s else "failed"
+    out["flags"] = [l.strip() for l in s.splitlines() if l.strip().startswith("***")]
+    out["cells"] = int(m.group(1)) if (m := re.search(r"^\s*cells:\s+(\d+)", s, re.M)) else None
+    out["hexahedra"] = int(m.group(1)) if (m := re.search(r"^\s*hexahedra:\s+(\d+)", s, re.M)) else None
+    out["concave_cells"] = get(r"Concave cells.*?number of cells: (\d+)", int) or 0
+    out["face_tet_faces"] = get(r"face tets: (\d+) faces", int) or 0
+    out["max_non_orthogonality"] = get(r"Mesh non-orthogonality Max: ([0-9.eE+-]+)")
+    out["max_skewness"] = get(r"Max skewness = ([0-9.eE+-]+)")
+    return out
+
+
+def fidelity(case, name, work, distance_tool, bike, samples):
+    surf = os.path.join(work, name + "_boundary.obj")
+    subprocess.run(["foamToSurface", "-case", case, "-constant", "-tri", surf], capture_output=True, env=ENV)
+    r = subprocess.run([distance_tool, surf, bike, "--exclude", BOX_PATCHES[name], "--samples", str(samples)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        return {"error": r.stderr.strip()}
+    j = json.loads(r.stdout)
+    return {"mesh_to_input": j["a_to_b"], "input_to_mesh": j["b_to_a"], "mesh_triangles": j["a_triangles"]}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--hexmesh", default=os.path.join(ROOT, "build", "tools", "hexmesh", "hexmesh"))
+    ap.add_argument("--surface-distance", default=os.path.join(ROOT, "build", "benchmark", "Hex_meshing_3", "surface_distance"))
+    ap.add_argument("--work", help="directory for the cases (default: a temporary one, kept)")
+    ap.add_argument("--skip-snappy", action="store_true")
+    ap.add_argument("--samples", type=int, default=200000, help="points sampled on each surface for the fidelity")
+    args = ap.parse_args()
+    bike = driver.find_input("motorBike.obj.gz")
+    if not bike:
+        sys.exit("motorBike.obj.gz not found (../shared/data or Debian's openfoam-examples)")
+    for prog in ["blockMesh", "snappyHexMesh", "surfaceFeatureExtract", "checkMesh", "foamToSurface"]:
+        if shutil.which(prog) is None:
+            sys.exit(f"{prog} not found: install OpenFOAM (apt-get install openfoam)")
+    if not os.path.exists(args.surface_distance):
+        subprocess.run(["cmake", "--build", os.path.join(ROOT, "build"), "--target", "surface_distance"], check=True)
+    work = os.path.abspath(args.work or tempfile.mkdtemp(prefix="motorbike_"))
+    os.makedirs(work, exist_ok=True)
+    results = {"input": bike, "machine": os.uname().nodename, "cores_used": 1}
+
+    # ours
+    case = os.path.join(work, "hexmesh")
+    shutil.rmtree(case, ignore_errors=True)
+    rep = os.path.join(work, "hexmesh_report.json")
+    rc, wall, mib = timed([args.hexmesh, bike, "-o", case, "--report", rep, "--force", "-q"] + HEXMESH_OPTIONS,
+                          work, os.path.join(work, "hexmesh.log"))
+    ours = {"exit": rc, "options": HEXMESH_OPTIONS, "seconds": wall, "peak_MiB": mib}
+    if rc == 0:
+        ours["checkMesh"] = checkmesh(case)
+        ours["fidelity"] = fidelity(case, "hexmesh", work, args.surface_distance, bike, args.samples)
+        ours["report_seconds"] = json.load(open(rep)).get("seconds", {})
+    results["hexmesh"] = ours
+
+    # snappyHexMesh
+    if not args.skip_snappy:
+        case = os.path.join(work, "snappyHexMesh")
+        shutil.rmtree(case, ignore_errors=True)
+        shutil.copytree(os.path.join(HERE, "motorBike", "system"), os.path.join(case, "system"))
+        # the tutorial's controlDict includes function objects (streamLines, forceCoeffs...) from
+        # its own directory: not needed to mesh, left out
+        cd = os.path.join(case, "system", "controlDict")
+        lines = [l for l in open(cd) if not re.match(r'\s*#include\s+"', l)]
+        open(cd, "w").write("".join(lines))
+        d = os.path.join(case, "system", "snappyHexMeshDict")
+        txt = open(d).read()
+        txt = re.sub(r"^addLayers\s+true;", "addLayers       false;", txt, flags=re.M)
+        open(d, "w").write(txt)
+        os.makedirs(os.path.join(case, "constant", "triSurface"))
+        with gzip.open(bike, "rb") as src, open(os.path.join(case, "constant", "triSurface", "motorBike.obj"), "wb") as dst:
+            shutil.copyfileobj(src, dst)
+        snappy = {"addLayers": False}
+        for step, cmd in [("blockMesh", ["blockMesh"]), ("surfaceFeatureExtract", ["surfaceFeatureExtract"]),
+                          ("snappyHexMesh", ["snappyHexMesh", "-overwrite"])]:
+            rc, wall, mib = timed(cmd, case, os.path.join(work, step + ".log"))
+            snappy[step] = {"exit": rc, "seconds": wall, "peak_MiB": mib}
+            if rc != 0:
+                break
+        snappy["seconds"] = snappy.get("snappyHexMesh", {}).get("seconds")
+        snappy["peak_MiB"] = snappy.get("snappyHexMesh", {}).get("peak_MiB")
+        if snappy.get("snappyHexMesh", {}).get("exit") == 0:
+            snappy["checkMesh"] = checkmesh(case)
+            snappy["fidelity"] = fidelity(case, "snappyHexMesh", work, args.surface_distance, bike, args.samples)
+        results["snappyHexMesh"] = snappy
+
+    json.dump(results, open(os.path.join(work, "results.json"), "w"), indent=1)
+    # the table
+    names = [n for n in ("hexmesh", "snappyHexMesh") if n in results]
+    rows = [("cells", lambda r: r["checkMesh"]["cells"]),
+            ("checkMesh hexahedra (6 faces)", lambda r: r["checkMesh"]["hexahedra"]),
+            ("wall seconds", lambda r: r["seconds"]),
+            ("peak MiB", lambda r: round(r["peak_MiB"])),
+            ("checkMesh -allTopology", lambda r: r["checkMesh"]["allTopology"]),
+            ("-allGeometry concave cells", lambda r: r["checkMesh"]["concave_cells"]),
+            ("-allGeometry face-tet faces", lambda r: r["checkMesh"]["face_tet_faces"]),
+            ("max non-orthogonality", lambda r: "%.1f" % r["checkMesh"]["max_non_orthogonality"]),
+            ("max skewness", lambda r: "%.2f" % r["checkMesh"]["max_skewness"]),
+            ("mesh->input mean / p99 / max (m)", lambda r: "%.4f / %.4f / %.4f" % tuple(r["fidelity"]["mesh_to_input"][k] for k in ("mean", "p99", "max"))),
+            ("input->mesh mean / p99 / max (m)", lambda r: "%.4f / %.4f / %.4f" % tuple(r["fidelity"]["input_to_mesh"][k] for k in ("mean", "p99", "max")))]
+    print(f"{'':36s}" + "".join(f"{n:>26s}" for n in names))
+    for label, f in rows:
+        cells = []
+        for n in names:
+            try:
+                cells.append(str(f(results[n])))
+            except (KeyError, TypeError):
+                cells.append("-")
+        print(f"{label:36s}" + "".join(f"{c:>26s}" for c in cells))
+    if "snappyHexMesh" in results:
+        s = results["snappyHexMesh"]
+        print(f"snappy's blockMesh {s.get('blockMesh', {}).get('seconds')} s, surfaceFeatureExtract "
+              f"{s.get('surfaceFeatureExtract', {}).get('seconds')} s (not counted above)")
+        try:
+            o, p = results["hexmesh"], s
+            print(f"ratios hexmesh / snappyHexMesh: cells {o['checkMesh']['cells'] / p['checkMesh']['cells']:.2f}, "
+                  f"time {o['seconds'] / p['seconds']:.2f}, peak memory {o['peak_MiB'] / p['peak_MiB']:.2f}")
+        except (KeyError, TypeError, ZeroDivisionError):
+            pass
+    print(f"results: {os.path.join(work, 'results.json')}")
+
+
+if __name__ == "__main__":
+    main()
