@@ -78,6 +78,36 @@ double scaled_jacobian(const std::array<Point_3, 8>& p)
   return internal::hex_scaled_jacobian(x);
 }
 
+namespace internal {
+// OpenFOAM's centre and area vector of a polygon of `n` vertices, `at(i)` the i-th
+// (`primitiveMesh::makeFaceCentresAndAreas()`: a triangle as it is, else the fan of triangles
+// around the vertex average, their centroids weighted by their areas)
+template <typename At>
+void foam_face_centre_and_area(std::size_t n, At at, Vec3& centre, Vec3& area)
+{
+  if(n == 3) {
+    const Vec3 a = at(0), b = at(1), c = at(2);
+    centre = mul(add(add(a, b), c), 1.0 / 3.0);
+    area = mul(cross(sub(b, a), sub(c, a)), 0.5);
+    return;
+  }
+  Vec3 avg{{0, 0, 0}};
+  for(std::size_t i = 0; i < n; ++i) avg = add(avg, at(i));
+  avg = mul(avg, 1.0 / double(n));
+  Vec3 sumN{{0, 0, 0}}, sumAc{{0, 0, 0}};
+  double sumA = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    const Vec3 p = at(i), q = at((i + 1) % n);
+    const Vec3 c = add(add(p, q), avg);
+    const Vec3 N = cross(sub(q, p), sub(avg, p));
+    const double a = norm(N);
+    sumN = add(sumN, N); sumA += a; sumAc = add(sumAc, mul(c, a));
+  }
+  centre = sumA < 1e-300 ? avg : mul(sumAc, 1.0 / (3.0 * sumA));
+  area = mul(sumN, 0.5);
+}
+} // namespace internal
+
 /*!
  * \ingroup PkgHexMeshing3Quality
  * \brief OpenFOAM's geometry of a polyhedral mesh: face centres and area vectors, cell centres and
@@ -95,28 +125,7 @@ struct OpenFOAM_geometry
   static void face_centre_and_area(const std::vector<Point_3>& points, const std::vector<Index>& F,
                                    Vec3& centre, Vec3& area)
   {
-    using namespace internal;
-    const std::size_t n = F.size();
-    if(n == 3) {
-      const Vec3 a = vec(points[F[0]]), b = vec(points[F[1]]), c = vec(points[F[2]]);
-      centre = mul(add(add(a, b), c), 1.0 / 3.0);
-      area = mul(cross(sub(b, a), sub(c, a)), 0.5);
-      return;
-    }
-    Vec3 avg{{0, 0, 0}};
-    for(auto v : F) avg = add(avg, vec(points[v]));
-    avg = mul(avg, 1.0 / double(n));
-    Vec3 sumN{{0, 0, 0}}, sumAc{{0, 0, 0}};
-    double sumA = 0;
-    for(std::size_t i = 0; i < n; ++i) {
-      const Vec3 p = vec(points[F[i]]), q = vec(points[F[(i + 1) % n]]);
-      const Vec3 c = add(add(p, q), avg);
-      const Vec3 N = cross(sub(q, p), sub(avg, p));
-      const double a = norm(N);
-      sumN = add(sumN, N); sumA += a; sumAc = add(sumAc, mul(c, a));
-    }
-    centre = sumA < 1e-300 ? avg : mul(sumAc, 1.0 / (3.0 * sumA));
-    area = mul(sumN, 0.5);
+    internal::foam_face_centre_and_area(F.size(), [&](std::size_t i) { return internal::vec(points[F[i]]); }, centre, area);
   }
 
   template <typename Point_3>

@@ -112,35 +112,19 @@ inline Vec3 hex_centre(const Vec3* x)
   return mul(cc, 0.125);
 }
 
-// OpenFOAM's cell centre of a hexahedron (`primitiveMesh::makeCellCentresAndVols()`): the faces'
-// centres and area vectors from the fan of triangles around each face's vertex average, then the
-// pyramids on the faces from the average of the face centres, their centroids weighted by their
-// volumes. A face split by hanging nodes is taken whole here. Not the vertex average: on the
-// skewed cells of the buffer the two differ enough that a face split valid around one is flat
-// around the other (teapot: a face between two buffer cells of scaled Jacobian 0.49).
+// OpenFOAM's cell centre of a hexahedron (`primitiveMesh::makeCellCentresAndVols()`, as
+// `OpenFOAM_geometry::compute()`): the faces' centres and area vectors, then the pyramids on the
+// faces from the average of the face centres, their centroids weighted by their volumes. A face
+// split by hanging nodes is taken whole here. Not the vertex average: on the skewed cells of the
+// buffer the two differ enough that a face split valid around one is flat around the other
+// (teapot: a face between two buffer cells of scaled Jacobian 0.49).
 inline Vec3 foam_hex_centre(const Vec3* x)
 {
   Vec3 fc[6], fa[6], est{{0, 0, 0}};
-  int k = 0;
-  for(const auto& f : hex_local_faces()) {
-    Vec3 c0{{0, 0, 0}};
-    for(int i = 0; i < 4; ++i) c0 = add(c0, x[f[i]]);
-    c0 = mul(c0, 0.25);
-    Vec3 sumN{{0, 0, 0}}, sumAc{{0, 0, 0}};
-    double sumA = 0;
-    for(int i = 0; i < 4; ++i) {
-      const Vec3& p = x[f[i]];
-      const Vec3& q = x[f[(i + 1) % 4]];
-      const Vec3 n = cross(sub(q, p), sub(c0, p));
-      const double a = norm(n);
-      sumN = add(sumN, n);
-      sumA += a;
-      sumAc = add(sumAc, mul(add(add(p, q), c0), a));
-    }
-    fc[k] = sumA > 1e-150 ? mul(sumAc, 1.0 / (3.0 * sumA)) : c0;
-    fa[k] = mul(sumN, 0.5);
+  for(int k = 0; k < 6; ++k) {
+    const auto& f = hex_local_faces()[std::size_t(k)];
+    foam_face_centre_and_area(4, [&](std::size_t i) { return x[f[i]]; }, fc[k], fa[k]);
     est = add(est, fc[k]);
-    ++k;
   }
   est = mul(est, 1.0 / 6.0);
   Vec3 sc{{0, 0, 0}};
@@ -1017,7 +1001,6 @@ private:
   void corners(Index c, Vec3* x) const { for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]]; }
   double cell_sj(Index c) const { Vec3 x[8]; corners(c, x); return hex_scaled_jacobian(x); }
   Vec3 cell_centre(Index c) const { Vec3 x[8]; corners(c, x); return hex_centre(x); }
-  Vec3 foam_centre(Index c) const { Vec3 x[8]; corners(c, x); return foam_hex_centre(x); }
   double cell_quality(Index c) const
   {
     Vec3 x[8];
@@ -1401,9 +1384,10 @@ private:
     }
     // the better diagonal split of a face, each scored by the worse of its corner tetrahedra in
     // the cell and in the cell across a whole face (as `hex_face_split_quality()`)
+    std::vector<Vec3> centre;   // OpenFOAM's cell centres, once per selection
     auto shared_split = [&](Index c, int fi) {
       const Index d = face_neighbour[c][std::size_t(fi)];
-      const Vec3 cc = foam_centre(c), cd = d == NONE ? cc : foam_centre(d);
+      const Vec3 cc = centre[c], cd = d == NONE ? cc : centre[d];
       const auto& f = hex_local_faces()[std::size_t(fi)];
       const auto& H = m.hexahedra[c];
       double corner[4];
@@ -1420,6 +1404,8 @@ private:
     rep.face_split_repairs += repair_sweeps([&](std::vector<char>& chosen) {
       // the cells of the faces whose splits fail (or nearly), if their own splits do too
       std::vector<char> failing(m.hexahedra.size(), 0);
+      centre.resize(m.hexahedra.size());
+      for(Index c = 0; c < m.hexahedra.size(); ++c) { Vec3 x[8]; corners(c, x); centre[c] = foam_hex_centre(x); }
       for(Index c = 0; c < m.hexahedra.size(); ++c)
         for(int fi = 0; fi < 6; ++fi) {
           const Index d = face_neighbour[c][std::size_t(fi)];

@@ -523,7 +523,7 @@ public:
         for(std::uint32_t id : m_by_level[l]) {
           const Node& nd = m_nodes[id];
           if(nd.is_leaf())
-            parents.push_back(std::uint64_t(nd.x >> 1) | (std::uint64_t(nd.y >> 1) << KEY_BITS) | (std::uint64_t(nd.z >> 1) << (2 * KEY_BITS)));
+            parents.push_back(pack(nd.x >> 1, nd.y >> 1, nd.z >> 1));
         }
         std::sort(parents.begin(), parents.end());
         parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
