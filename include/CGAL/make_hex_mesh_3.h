@@ -123,6 +123,16 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       the smallest of the criteria's surface, curvature and feature sizes (`Feature_curves_3::Options::scale`)
  *       and against the edges around them (`Feature_curves_3::Options::contrast` 3)}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{feature_pillows}
+ *     \cgalParamDescription{`true`: along each convex sharp curve whose chain allows it, the buffer is
+ *       cut and each side gets its own copies of the chain's vertices; one hexahedron per chain edge
+ *       fills the cut, with two boundary faces meeting at the curve, and one cell closes three such
+ *       pillows at a corner. A face then never has three corners on a curve where the chain turns
+ *       inside it. Experimental: it sharpens the features (corners, curves) but, where chains turn
+ *       often, lowers the worst cells (see the package's notes)}
+ *     \cgalParamType{`bool`}
+ *     \cgalParamDefault{`false`}
+ *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{progress and cancellation hooks (model of `HexMeshingVisitor`)}
  *     \cgalParamType{a class, or `std::reference_wrapper` of one}
@@ -181,7 +191,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       features = own.get();
     }
     visitor.on_phase_begin("capture", out.number_of_cells());
-    Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features, stats);
+    typename Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features>::Options copt;
+    copt.feature_pillows = choose_parameter(get_parameter(np, HNP::feature_pillows), false);
+    Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features, stats, copt);
     if(!capture.run(visitor)) status = Hex_meshing_3::Status::CANCELED;
     visitor.on_phase_end("capture");
     stats.kept_cells = out.number_of_cells();

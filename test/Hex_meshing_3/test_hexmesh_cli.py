@@ -176,6 +176,8 @@ def main():
         ("eight.off", ["--staircase", "--box", "-1,-1,-1,2,1,1", "--size", "0.25", "--surface-size", "0.03",
                        "--region", "seed:-0.9,-0.9,-0.9"], "eight_external_staircase"),
         ("cube.off", ["--size", "0.3", "--surface-size", "0.075"], "cube"),
+        ("cube.off", ["--size", "0.3", "--surface-size", "0.075", "--feature-pillows"], "cube_pillows"),
+        ("fandisk.off", ["--size", "0.1", "--surface-size", "0.025", "--feature-pillows"], "fandisk_pillows"),
         ("anchor.off", ["--size", "0.12", "--surface-size", "0.03"], "anchor"),
         ("bunny.off", [], "bunny_default"),
         ("elephant.off", ["--size", "0.1", "--surface-size", "0.025"], "elephant"),
@@ -243,6 +245,27 @@ def main():
         r1 = results["eight_between_1"][1]["options"]
         check(r1.get("cells_between_levels") == 1 and results["eight_between_3"][1]["options"].get("cells_between_levels") == 3,
               "the report gives the option")
+
+    # feature pillows: a sheet of hexahedra along the convex curves; on the cube every edge is convex
+    # and every corner joins three, so no boundary face has three corners on an edge: the worst cell
+    # is far better than without, and the corners are exact
+    print("[feature pillows]")
+    if "cube" in results and "cube_pillows" in results and "fandisk" in results and "fandisk_pillows" in results:
+        plain, pil = results["cube"][1], results["cube_pillows"][1]
+        size = pil["fidelity"]["surface_size"]
+        check(plain["boundary"].get("pillow_cells") == 0 and pil["boundary"]["pillow_cells"] > 0,
+              f"pillow cells only when asked ({pil['boundary']['pillow_cells']})")
+        check(pil["options"].get("feature_pillows") is True, "the report gives the option")
+        sj0, sj1 = plain["quality"]["scaled_jacobian"]["min"], pil["quality"]["scaled_jacobian"]["min"]
+        check(sj1 >= 0.8 and sj1 > sj0 + 0.1, f"cube: min scaled Jacobian {sj1:.3f} with pillows ({sj0:.3f} without)")
+        ff = pil["feature_fidelity"]
+        check(ff["max_corner_distance"] <= 0.01 * size, f"cube: every corner has a vertex within 0.01 s ({ff['max_corner_distance']:.3g})")
+        check(ff["input_to_mesh"] <= 0.25 * size and ff["mesh_to_input"] <= 0.25 * size,
+              f"cube: feature edges within 0.25 s both ways ({ff['input_to_mesh']:.3g}, {ff['mesh_to_input']:.3g})")
+        fp, fn = results["fandisk_pillows"][1], results["fandisk"][1]
+        fs = fp["fidelity"]["surface_size"]
+        c1, c0 = fp["feature_fidelity"]["max_corner_distance"], fn["feature_fidelity"]["max_corner_distance"]
+        check(c1 <= 0.1 * fs, f"fandisk: every corner within 0.1 s with pillows ({c1 / fs:.3f} s; {c0 / fs:.3f} s without)")
 
     # determinism: byte-identical outputs
     print("[determinism]")

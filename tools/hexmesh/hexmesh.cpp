@@ -199,7 +199,7 @@ int main(int argc, char** argv)
   std::string box_s, region = "inside", surface_size_s;
   int max_level = 12;
   std::size_t max_cells = 0;
-  bool force = false, quiet = false, strict = false, staircase = false;
+  bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = false;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
                                          "(repeatable)")->required();
@@ -245,6 +245,9 @@ int main(int argc, char** argv)
   app.add_option("--max-level", max_level, "most refinement levels below the initial grid")->check(CLI::Range(0, 20));
   app.add_option("--max-cells", max_cells, "stop refining before the grid exceeds this many cells (the mesh stays valid; "
                                            "a warning says so)");
+  app.add_flag("--feature-pillows", feature_pillows, "experimental: a sheet of hexahedra along each convex sharp curve, "
+                                                  "two boundary faces meeting at the curve (sharper features; the worst "
+                                                  "cells may get worse where chains turn often)");
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-name", patch_name_rules, "REGEX=NAME: rename the patches whose whole name matches REGEX "
@@ -434,15 +437,15 @@ int main(int argc, char** argv)
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
-                                                               .visitor(std::ref(progress)));
+                                                               .feature_pillows(feature_pillows).visitor(std::ref(progress)));
     else
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
-                                                               .visitor(std::ref(progress)));
+                                                               .feature_pillows(feature_pillows).visitor(std::ref(progress)));
     if(!quiet && !staircase)
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
-                << stats.buffer_cells << " buffer cells, " << stats.surface_vertices << " vertices on the surface ("
+                << stats.buffer_cells << " buffer cells (" << stats.pillow_cells << " in feature pillows), " << stats.surface_vertices << " vertices on the surface ("
                 << stats.curve_vertices << " on " << stats.curves_captured << " feature curves, " << stats.corner_vertices
                 << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curve_gaps << " curve ends short of their corner, " << stats.curve_turns.size() << " chain turns left off their curve, " << stats.curves_missed
                 << " curves missed, " << stats.unreached_vertices.size() << " vertices could not reach the surface, "
@@ -585,6 +588,7 @@ int main(int argc, char** argv)
       j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
                       {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
                       {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
+                      {"feature_pillows", feature_pillows},
                       {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},
@@ -688,7 +692,7 @@ int main(int argc, char** argv)
           for(std::size_t i = 0; i < stats.unreached_vertices.size() && i < 100; ++i)
             un.push_back({stats.unreached_vertices[i][0], stats.unreached_vertices[i][1], stats.unreached_vertices[i][2]});
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
-                           {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces},
+                           {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces},
                            {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},

@@ -113,7 +113,8 @@ struct Meshing_statistics
   std::size_t staircase_removed_cells = 0;  ///< cells removed to make room for the buffer layer or a manifold staircase
   std::size_t too_close_vertices = 0;       ///< staircase vertices found too close to the surface (all rounds)
   std::size_t non_manifold_vertices = 0;    ///< staircase vertices found non-manifold (all rounds)
-  std::size_t buffer_cells = 0;             ///< hexahedra of the buffer layer
+  std::size_t buffer_cells = 0;             ///< hexahedra of the buffer layer (pillows included)
+  std::size_t pillow_cells = 0;             ///< of which in the pillows along convex feature curves (one per chain edge, one per corner of three)
   std::size_t surface_vertices = 0;         ///< buffer vertices placed on the surface
   std::size_t curve_vertices = 0;           ///< of which on feature curves
   std::size_t corner_vertices = 0;          ///< of which on corners

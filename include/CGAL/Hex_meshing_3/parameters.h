@@ -24,6 +24,7 @@ enum leaks_t { leaks };
 enum statistics_t { statistics };
 enum body_fitted_t { body_fitted };
 enum feature_curves_t { feature_curves };
+enum feature_pillows_t { feature_pillows };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -59,6 +60,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::feature_curves_t, Named_parameters>
   feature_curves(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::feature_pillows_t, Named_parameters>
+  feature_pillows(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -94,6 +99,11 @@ Named_parameters<V, internal_np::body_fitted_t> body_fitted(const V& v) { return
 /// ones `Feature_curves_3` finds with its default options (30 degrees)
 template <typename V>
 Named_parameters<V, internal_np::feature_curves_t> feature_curves(const V& v) { return { v }; }
+
+/// `true`: the chains of convex sharp curves get a sheet of hexahedra along them (see
+/// `make_hex_mesh_3()`); experimental, off by default
+template <typename V>
+Named_parameters<V, internal_np::feature_pillows_t> feature_pillows(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }

@@ -55,6 +55,7 @@
 #include <map>
 #include <memory>
 #include <queue>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -299,6 +300,7 @@ public:
     int face_split_passes = 4;              ///< sweeps of that repair (and of the split-face warp's)
     double max_split_face_warp = 0.05;      ///< faces split in four warped beyond this (x edge) are repaired last
     double max_non_orthogonality = 50;      ///< degrees: the cells at faces beyond it are worked on after the repairs
+    bool feature_pillows = false;           ///< convex sharp curves get a sheet of hexahedra along their chain (`pillow_chains()`)
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -425,6 +427,22 @@ private:
     planes.assign(nv, 0);
     for(Index v = 0; v < nv; ++v) planes[v] = std::uint8_t(plane_mask(P[v]));
     for(Index v : inner) kind[twin[v]] = SURFACE;
+    build_adjacency();
+    // local size: the shortest incident edge of the staircase
+    hloc.assign(nv, std::numeric_limits<double>::max());
+    for(const auto& h : m.hexahedra)
+      for(const auto& e : hex_local_edges()) {
+        const double l = norm(sub(P[h[e[0]]], P[h[e[1]]]));
+        if(l > 0) for(int k = 0; k < 2; ++k) hloc[h[e[k]]] = (std::min)(hloc[h[e[k]]], l);
+      }
+    for(Index v : inner) hloc[twin[v]] = hloc[v];
+  }
+
+  // hanging nodes, vertex-cell incidences, neighbours and top faces at each vertex (again after
+  // the pillows changed the buffer)
+  void build_adjacency()
+  {
+    const std::size_t nv = P.size();
     // hanging nodes: independent masters with weights
     hang_of.assign(nv, NONE);
     for(std::size_t i = 0; i < m.hanging_nodes.size(); ++i) {
@@ -457,14 +475,6 @@ private:
       for(Index v : m.boundary_faces[top_faces[i]].vertices) vertex_top_faces[v].push_back(i);
     for(auto* L : {&nbrs, &snbrs})
       for(auto& l : *L) { std::sort(l.begin(), l.end()); l.erase(std::unique(l.begin(), l.end()), l.end()); }
-    // local size: the shortest incident edge of the staircase
-    hloc.assign(nv, std::numeric_limits<double>::max());
-    for(const auto& h : m.hexahedra)
-      for(const auto& e : hex_local_edges()) {
-        const double l = norm(sub(P[h[e[0]]], P[h[e[1]]]));
-        if(l > 0) for(int k = 0; k < 2; ++k) hloc[h[e[k]]] = (std::min)(hloc[h[e[k]]], l);
-      }
-    for(Index v : inner) hloc[twin[v]] = hloc[v];
   }
 
   void update_hanging()
@@ -588,6 +598,8 @@ private:
   // the curves to follow: the feature curves, and the user's feature lines (the domain's feature
   // segments, chained into polylines); their ends are corners
   struct Snap_curve { std::vector<Vec3> pts; bool closed = false; int c0 = -1, c1 = -1; };
+  // a path of top-face edges following a curve from arc length s0 to s1
+  struct Piece { std::vector<Index> path; double s0, s1; };
 
   void snap_features()
   {
@@ -707,8 +719,10 @@ private:
       P[v] = clamp_planes(v, c);
       ++rep.corner_vertices;
     }
-    // curves: shortest paths on the outer surface between their end vertices
+    // curves: shortest paths on the outer surface between their end vertices (all paths first:
+    // whether a chain gets a pillow depends on the chains around it)
     std::vector<char> used(P.size(), 0);
+    std::vector<std::pair<std::size_t, std::vector<Piece>>> captured;
     for(std::size_t c = 0; c < curves.size(); ++c) {
       if(!follow[c]) continue;
       const auto& cv = curves[c];
@@ -750,7 +764,6 @@ private:
         if(v != NONE && norm(sub(P[v], x)) > hloc[v]) v = NONE;
         return v;
       };
-      struct Piece { std::vector<Index> path; double s0, s1; };
       std::vector<Piece> pieces;
       std::vector<Index> marked;
       std::size_t gaps = 0;
@@ -785,6 +798,18 @@ private:
       }
       ++rep.curves_captured;
       rep.curve_gaps += gaps;
+      for(const Piece& piece : pieces) for(Index v : piece.path) used[v] = 1;   // the ends too
+      captured.push_back({c, std::move(pieces)});
+    }
+    // the chains of convex sharp curves get a pillow (see `pillow_chains()`) where the chains
+    // around them allow it
+    std::vector<char> pillow(curves.size(), 0);
+    if(opt.feature_pillows) choose_pillows(captured, pillow);
+    for(const auto& cp : captured) {
+      const std::size_t c = cp.first;
+      const auto& pieces = cp.second;
+      std::vector<double> arc{0};
+      for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
       // snap the path vertices onto the curve, spaced along it as they are along the path (a
       // closest-point snap could put two of them on one point)
       for(const Piece& piece : pieces) {
@@ -792,8 +817,9 @@ private:
         // where the path turns inside a top face (two of its edges in a row), the middle vertex is
         // not snapped: three corners of one face on the curve would flatten it; the curve crosses
         // that face along its diagonal
+        // (a pillowed chain has no such face once its pillow is in)
         std::vector<char> skip(pc.size(), 0);
-        for(std::size_t i = 1; i + 1 < pc.size(); ++i)
+        for(std::size_t i = 1; i + 1 < pc.size() && !pillow[c]; ++i)
           if(!skip[i - 1] && share_top_face(pc[i - 1], pc[i], pc[i + 1])) skip[i] = 1;
         std::vector<double> cum{0};
         Index last = pc[0];
@@ -819,6 +845,7 @@ private:
         }
       }
     }
+    if(std::find(pillow.begin(), pillow.end(), 1) != pillow.end()) pillow_chains(captured, pillow);
     // a top face with a curve vertex between two other snapped corners of it is flat where the
     // three are collinear (a path back in a face it left, or two curves side by side): that
     // vertex goes back to the surface, the curve crosses the face
@@ -842,6 +869,410 @@ private:
       if(std::find(q.begin(), q.end(), a) != q.end() && std::find(q.begin(), q.end(), c) != q.end()) return true;
     }
     return false;
+  }
+
+  // -----------------------------------------------------------------------------------------------
+  // 3b. pillows along convex feature chains
+  //
+  // A chain of top-face edges follows a curve on the staircase's grid, so it turns inside faces
+  // where the curve is oblique to the grid, and a face with three corners on the curve is flat.
+  // At a convex sharp curve the buffer is cut along the chain instead: each side of the chain
+  // gets its own copies of the chain's vertices (on its own surface region), and one hexahedron per
+  // chain edge fills the cut, its section (inner vertex, side-A copy, curve vertex, side-B copy)
+  // a quadrilateral with two boundary faces meeting at the curve. Where three pillowed curves
+  // meet at a corner, one hexahedron closes the three pillows (the cube-corner cell). Concave
+  // curves keep one vertex for both sides (their section would have an angle beyond 180 degrees).
+
+  // `x` seen from `t` along a top-face edge: the far end of the edge of which `x` is the hanging
+  // midpoint, or `x` itself
+  Index canonical_end(Index t, Index x) const
+  {
+    if(kind[x] != HANGING || hang_of[x] == NONE) return x;
+    const auto& h = m.hanging_nodes[hang_of[x]];
+    if(h.number_of_masters != 2) return x;
+    if(h.masters[0] == t) return h.masters[1];
+    if(h.masters[1] == t) return h.masters[0];
+    return x;
+  }
+
+  // The fan of top faces at `t` (in the order of `vertex_top_faces[t]`): the ends of each face's
+  // edges after and before `t`, and its sector once the fan is cut at the edges in `cut`. Returns
+  // the number of sectors, -1 if the fan is not a closed disk.
+  struct Fan { std::vector<Index> next, prev; std::vector<int> sector; };
+  int fan_sectors(Index t, const std::unordered_set<std::uint64_t>& cut, Fan& fan) const
+  {
+    const auto& F = vertex_top_faces[t];
+    const std::size_t n = F.size();
+    fan.next.assign(n, NONE);
+    fan.prev.assign(n, NONE);
+    fan.sector.assign(n, -1);
+    for(std::size_t i = 0; i < n; ++i) {
+      const auto& q = m.boundary_faces[top_faces[F[i]]].vertices;
+      int k = 0;
+      while(k < 4 && q[std::size_t(k)] != t) ++k;
+      if(k == 4) return -1;
+      fan.next[i] = canonical_end(t, q[std::size_t((k + 1) % 4)]);
+      fan.prev[i] = canonical_end(t, q[std::size_t((k + 3) % 4)]);
+    }
+    std::vector<std::size_t> parent(n);
+    for(std::size_t i = 0; i < n; ++i) parent[i] = i;
+    auto find = [&](std::size_t x) { while(parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
+    for(std::size_t i = 0; i < n; ++i) {
+      std::size_t match = n, after = 0, before = 0;
+      for(std::size_t j = 0; j < n; ++j) {
+        if(fan.prev[j] == fan.next[i]) { match = j; ++before; }
+        if(fan.next[j] == fan.next[i]) ++after;
+      }
+      if(before != 1 || after != 1) return -1;
+      if(!cut.count(capture_edge_key(t, fan.next[i]))) {
+        const std::size_t a = find(i), b = find(match);
+        if(a != b) parent[(std::max)(a, b)] = (std::min)(a, b);
+      }
+    }
+    int ns = 0;
+    std::vector<int> id(n, -1);
+    for(std::size_t i = 0; i < n; ++i) {
+      const std::size_t r = find(i);
+      if(id[r] < 0) id[r] = ns++;
+      fan.sector[i] = id[r];
+    }
+    return ns;
+  }
+
+  // whether the mesh is convex at every edge of the input's curve `c` (a curve of `fc`): the far
+  // vertex of each triangle lies behind the other's plane, the planes oriented out of the mesh
+  // (exact orientation tests; which side of the input the mesh is on is voted by the buffer's
+  // vertices next to the chain, against their closest triangles)
+  bool convex_curve(std::size_t c, const std::vector<Piece>& pieces,
+                    const std::unordered_map<std::uint64_t, std::vector<Index>>& edge_triangles) const
+  {
+    const auto& tris = d.triangle_indices();
+    const auto& X = d.points();
+    typename GT::Orientation_3 orientation = GT().orientation_3_object();
+    // which side: + if the mesh is behind the triangles' normals
+    int vote = 0, voters = 0;
+    std::set<Index> on_path;
+    for(const Piece& pc : pieces) on_path.insert(pc.path.begin(), pc.path.end());
+    std::set<Index> seen;
+    for(Index v : on_path)
+      for(Index w : snbrs[v]) {
+        if(on_path.count(w) || kind[w] != SURFACE || inner_of[w] == NONE || !seen.insert(w).second) continue;
+        const std::size_t T = d.closest_triangle(Point_3(P[w][0], P[w][1], P[w][2]));
+        if(d.is_two_sided(T)) return false;
+        const auto& ti = tris[T];
+        const Index iv = inner_of[w];
+        const CGAL::Orientation o = orientation(X[ti[0]], X[ti[1]], X[ti[2]], Point_3(P[iv][0], P[iv][1], P[iv][2]));
+        if(o == CGAL::NEGATIVE) ++vote;
+        else if(o == CGAL::POSITIVE) --vote;
+        ++voters;
+      }
+    if(voters == 0 || 2 * std::abs(vote) < voters) return false;
+    const CGAL::Orientation behind = vote > 0 ? CGAL::NEGATIVE : CGAL::POSITIVE;
+    const auto& cv = fc->curves()[c].vertices;
+    const std::size_t ne = fc->curves()[c].closed ? cv.size() : cv.size() - 1;
+    for(std::size_t i = 0; i < ne; ++i) {
+      const Index a = cv[i], b = cv[(i + 1) % cv.size()];
+      auto it = edge_triangles.find(capture_edge_key(a, b));
+      if(it == edge_triangles.end() || it->second.size() != 2) return false;
+      const auto& t1 = tris[it->second[0]];
+      const auto& t2 = tris[it->second[1]];
+      if(d.is_two_sided(it->second[0]) || d.is_two_sided(it->second[1])) return false;
+      auto far = [&](const auto& t) {
+        for(int k = 0; k < 3; ++k) if(t[std::size_t(k)] != a && t[std::size_t(k)] != b) return t[std::size_t(k)];
+        return t[0];
+      };
+      // consistently oriented across the edge: a -> b in one, b -> a in the other
+      auto forward = [&](const auto& t) {
+        for(int k = 0; k < 3; ++k) if(t[std::size_t(k)] == a) return t[std::size_t((k + 1) % 3)] == b;
+        return false;
+      };
+      if(forward(t1) == forward(t2)) return false;
+      if(orientation(X[t1[0]], X[t1[1]], X[t1[2]], X[far(t2)]) != behind) return false;
+      if(orientation(X[t2[0]], X[t2[1]], X[t2[2]], X[far(t1)]) != behind) return false;
+    }
+    return true;
+  }
+
+  // the curves whose chains get a pillow: convex ones, whose chain vertices are off the box planes
+  // and have fans that are closed disks cut into two sectors (three at a corner where three
+  // pillowed chains meet); a curve failing at one vertex loses its pillow, until none fails
+  void choose_pillows(const std::vector<std::pair<std::size_t, std::vector<Piece>>>& captured, std::vector<char>& pillow)
+  {
+    if(!fc) return;
+    std::unordered_set<std::uint64_t> curve_edges;
+    for(const auto& cp : captured) {
+      if(cp.first >= fc->curves().size()) continue;
+      const auto& cv = fc->curves()[cp.first].vertices;
+      for(std::size_t i = 0; i + 1 < cv.size(); ++i) curve_edges.insert(capture_edge_key(cv[i], cv[i + 1]));
+      if(fc->curves()[cp.first].closed && cv.size() > 2) curve_edges.insert(capture_edge_key(cv.back(), cv.front()));
+    }
+    std::unordered_map<std::uint64_t, std::vector<Index>> edge_triangles;
+    const auto& tris = d.triangle_indices();
+    for(Index t = 0; t < tris.size(); ++t)
+      for(int k = 0; k < 3; ++k) {
+        const std::uint64_t key = capture_edge_key(tris[t][std::size_t(k)], tris[t][std::size_t((k + 1) % 3)]);
+        if(curve_edges.count(key)) edge_triangles[key].push_back(t);
+      }
+    for(const auto& cp : captured)
+      if(cp.first < fc->curves().size() && convex_curve(cp.first, cp.second, edge_triangles)) pillow[cp.first] = 1;
+    Fan fan;
+    for(bool changed = true; changed;) {
+      changed = false;
+      std::unordered_set<std::uint64_t> cut;
+      std::map<Index, std::vector<std::size_t>> at;   // chain vertex -> its pillowed curves, once per chain edge
+      for(const auto& cp : captured) {
+        if(!pillow[cp.first]) continue;
+        for(const Piece& pc : cp.second)
+          for(std::size_t i = 0; i + 1 < pc.path.size(); ++i) {
+            cut.insert(capture_edge_key(pc.path[i], pc.path[i + 1]));
+            at[pc.path[i]].push_back(cp.first);
+            at[pc.path[i + 1]].push_back(cp.first);
+          }
+      }
+      // the chain edges of the other curves at each vertex (they meet the pillows at corners)
+      std::map<Index, std::vector<Index>> others;
+      for(const auto& cp : captured) {
+        if(pillow[cp.first]) continue;
+        for(const Piece& pc : cp.second)
+          for(std::size_t i = 0; i + 1 < pc.path.size(); ++i) {
+            if(at.count(pc.path[i])) others[pc.path[i]].push_back(pc.path[i + 1]);
+            if(at.count(pc.path[i + 1])) others[pc.path[i + 1]].push_back(pc.path[i]);
+          }
+      }
+      std::vector<std::size_t> drop;
+      for(const auto& a : at) {
+        const Index t = a.first;
+        const int k = int(a.second.size());
+        const int ns = planes[t] == 0 && inner_of[t] != NONE ? fan_sectors(t, cut, fan) : -1;
+        bool ok = ns == k && (k == 2 || (k == 3 && kind[t] == CORNER));
+        // another curve's chain ending here runs inside one sector, whose copy of the vertex then
+        // starts that chain (one per sector; none at a corner cell)
+        auto o = others.find(t);
+        if(ok && o != others.end()) {
+          std::vector<char> taken(std::size_t(ns), 0);
+          ok = k == 2;
+          for(Index e : o->second) {
+            std::size_t i = 0;
+            while(i < fan.next.size() && fan.next[i] != e) ++i;
+            if(!ok || i == fan.next.size() || taken[std::size_t(fan.sector[i])]) { ok = false; break; }
+            taken[std::size_t(fan.sector[i])] = 1;
+          }
+        }
+        if(ok) continue;
+        drop.insert(drop.end(), a.second.begin(), a.second.end());
+      }
+      for(std::size_t c : drop) if(pillow[c]) { pillow[c] = 0; changed = true; }
+    }
+  }
+
+  // a copy of vertex `t` for a pillow (same inner vertex, size, normals)
+  Index pillow_vertex(Index t, Kind k)
+  {
+    const Index v = Index(P.size());
+    P.push_back(P[t]);
+    kind.push_back(k);
+    planes.push_back(planes[t]);
+    hloc.push_back(hloc[t]);
+    inner_of.push_back(inner_of[t]);
+    fnormals.push_back(fnormals[t]);
+    curve_of.push_back(-1);
+    cnbrs.push_back({});
+    return v;
+  }
+
+  void pillow_chains(const std::vector<std::pair<std::size_t, std::vector<Piece>>>& captured, const std::vector<char>& pillow)
+  {
+    struct Chain_edge { Index t, u; int curve; };
+    std::vector<Chain_edge> edges;
+    std::unordered_set<std::uint64_t> cut;
+    std::map<Index, int> count;
+    for(const auto& cp : captured) {
+      if(!pillow[cp.first]) continue;
+      for(const Piece& pc : cp.second)
+        for(std::size_t i = 0; i + 1 < pc.path.size(); ++i) {
+          edges.push_back({pc.path[i], pc.path[i + 1], int(cp.first)});
+          cut.insert(capture_edge_key(pc.path[i], pc.path[i + 1]));
+          ++count[pc.path[i]];
+          ++count[pc.path[i + 1]];
+        }
+    }
+    // the fans and one new vertex per sector
+    std::map<Index, Fan> fans;
+    std::map<Index, std::vector<Index>> sector_twin;
+    for(const auto& kc : count) {
+      Fan& fan = fans[kc.first];
+      const int ns = fan_sectors(kc.first, cut, fan);
+      CGAL_assertion(ns == kc.second);
+      std::vector<Index>& tw = sector_twin[kc.first];
+      for(int s_ = 0; s_ < ns; ++s_) { tw.push_back(pillow_vertex(kc.first, SURFACE)); ++rep.surface_vertices; }
+    }
+    auto sector_vertex = [&](Index t, std::size_t i) { return sector_twin[t][std::size_t(fans[t].sector[i])]; };
+    // the face of the fan at `t` whose edge after (before) `t` goes to `u`
+    auto face_after = [&](Index t, Index u) {
+      const Fan& f = fans[t];
+      for(std::size_t i = 0; i < f.next.size(); ++i) if(f.next[i] == u) return i;
+      CGAL_assertion(false);
+      return std::size_t(0);
+    };
+    auto face_before = [&](Index t, Index u) {
+      const Fan& f = fans[t];
+      for(std::size_t i = 0; i < f.prev.size(); ++i) if(f.prev[i] == u) return i;
+      CGAL_assertion(false);
+      return std::size_t(0);
+    };
+    // hanging twins whose master is a chain vertex hang on that master's copy for the sector
+    // of their faces
+    for(auto& hn : m.hanging_nodes) {
+      if(hn.number_of_masters != 2) continue;
+      for(int j = 0; j < 2; ++j) {
+        const Index p = hn.masters[std::size_t(j)];
+        auto it = fans.find(p);
+        if(it == fans.end()) continue;
+        const auto& F = vertex_top_faces[p];
+        for(std::size_t i = 0; i < F.size(); ++i) {
+          const auto& q = m.boundary_faces[top_faces[F[i]]].vertices;
+          if(std::find(q.begin(), q.end(), hn.vertex) != q.end()) { hn.masters[std::size_t(j)] = sector_vertex(p, i); break; }
+        }
+      }
+    }
+    // the buffer cells and top faces of each sector take its copy
+    for(const auto& kf : fans) {
+      const Index t = kf.first;
+      const auto& F = vertex_top_faces[t];
+      for(std::size_t i = 0; i < F.size(); ++i) {
+        auto& bf = m.boundary_faces[top_faces[F[i]]];
+        const Index tw = sector_vertex(t, i);
+        for(Index& x : bf.vertices) if(x == t) x = tw;
+        for(Index& x : m.hexahedra[bf.cell]) if(x == t) x = tw;
+      }
+    }
+    // another curve's chain ending at a pillowed vertex starts from the copy of its sector
+    std::set<Index> on_other;
+    for(const auto& cp : captured) {
+      if(pillow[cp.first]) continue;
+      for(const Piece& pc : cp.second)
+        for(std::size_t i = 0; i + 1 < pc.path.size(); ++i)
+          for(int end = 0; end < 2; ++end) {
+            const Index t = pc.path[i + std::size_t(end)], e = pc.path[i + std::size_t(1 - end)];
+            if(!fans.count(t)) continue;
+            const Index tw = sector_vertex(t, face_after(t, e));
+            kind[tw] = CURVE;
+            curve_of[tw] = int(cp.first);
+            P[tw] = clamp_planes(tw, closest_on_curve(mul(add(P[t], P[e]), 0.5), int(cp.first)));
+            --rep.surface_vertices;
+            ++rep.curve_vertices;
+            on_other.insert(tw);
+            for(Index& x : cnbrs[e]) if(x == t) x = tw;
+            cnbrs[t].erase(std::remove(cnbrs[t].begin(), cnbrs[t].end(), e), cnbrs[t].end());
+            cnbrs[t].push_back(tw);
+            cnbrs[tw] = {t, e};
+            feature_edges.erase(capture_edge_key(t, e));
+            feature_edges.insert(capture_edge_key(t, tw));
+            feature_edges.insert(capture_edge_key(tw, e));
+          }
+    }
+    // corners where three pillows meet: each chain ends at a vertex of its own on its curve, near
+    // the corner; the corner cell joins them
+    struct End { Index other, q; int sa, sb; int curve; };
+    std::map<Index, std::vector<End>> corner_ends;
+    for(const auto& kc : count)
+      if(kc.second == 3) corner_ends[kc.first];
+    auto end_vertex = [&](Index c, Index e, int curve, int sa, int sb) {
+      auto it = corner_ends.find(c);
+      if(it == corner_ends.end()) return c;
+      for(const End& en : it->second) if(en.other == e) return en.q;
+      const Index q = pillow_vertex(c, CURVE);
+      curve_of[q] = curve;
+      P[q] = clamp_planes(q, closest_on_curve(mul(add(P[c], P[e]), 0.5), curve));
+      ++rep.curve_vertices;
+      for(Index& x : cnbrs[c]) if(x == e) x = q;
+      for(Index& x : cnbrs[e]) if(x == c) x = q;
+      cnbrs[q] = {c, e};
+      feature_edges.erase(capture_edge_key(c, e));
+      feature_edges.insert(capture_edge_key(c, q));
+      feature_edges.insert(capture_edge_key(q, e));
+      it->second.push_back({e, q, sa, sb, curve});
+      return q;
+    };
+    std::map<Index, std::array<Index, 4>> corner_face;   // a chain cell's outward face at a corner, from the inner vertex
+    auto add_cell = [&](const typename HexMesh::Hexahedron& hx, int level_cell) {
+      const Index c = Index(m.hexahedra.size());
+      m.hexahedra.push_back(hx);
+      m.cell_levels.push_back(m.cell_levels[std::size_t(level_cell)]);
+      buffer_owner.push_back(NONE);
+      ++rep.buffer_cells;
+      ++rep.pillow_cells;
+      return c;
+    };
+    auto add_top = [&](const std::array<Index, 4>& q, Index cell, int patch) {
+      m.boundary_faces.push_back({q, cell, patch});
+      top_faces.push_back(m.boundary_faces.size() - 1);
+    };
+    for(const Chain_edge& e : edges) {
+      const Index t = e.t, u = e.u;
+      const std::size_t at_t = face_after(t, u), bt_t = face_before(t, u), au = face_before(u, t), bu = face_after(u, t);
+      const auto& fa = m.boundary_faces[top_faces[vertex_top_faces[t][at_t]]];
+      const auto& fb = m.boundary_faces[top_faces[vertex_top_faces[t][bt_t]]];
+      const int patch_a = fa.patch, patch_b = fb.patch, level_cell = int(fa.cell);
+      const int sa_t = fans[t].sector[at_t], sb_t = fans[t].sector[bt_t];
+      const int sa_u = fans[u].sector[au], sb_u = fans[u].sector[bu];
+      const Index tA = sector_twin[t][std::size_t(sa_t)], tB = sector_twin[t][std::size_t(sb_t)];
+      const Index uA = sector_twin[u][std::size_t(sa_u)], uB = sector_twin[u][std::size_t(sb_u)];
+      const Index t1 = end_vertex(t, u, e.curve, sa_t, sb_t), u1 = end_vertex(u, t, e.curve, sa_u, sb_u);
+      const typename HexMesh::Hexahedron hx{{inner_of[t], tA, t1, tB, inner_of[u], uA, u1, uB}};
+      const Index c = add_cell(hx, level_cell);
+      add_top({{tA, t1, u1, uA}}, c, patch_a);
+      add_top({{tB, uB, u1, t1}}, c, patch_b);
+      feature_edges.insert(capture_edge_key(t1, u1));
+      if(t1 != t) corner_face[t] = {{inner_of[t], tB, t1, tA}};   // local face 4 (0, 3, 2, 1)
+      if(u1 != u) corner_face[u] = {{inner_of[u], uA, u1, uB}};   // local face 5 (4, 5, 6, 7)
+    }
+    for(const auto& ce : corner_ends) {
+      const Index c = ce.first;
+      const auto& ends = ce.second;
+      CGAL_assertion(ends.size() == 3);
+      const auto& f = corner_face[c];   // (inner, a, q, b) outward from its chain cell
+      const auto& tw = sector_twin[c];
+      auto sector_of_twin = [&](Index x) { return int(std::find(tw.begin(), tw.end(), x) - tw.begin()); };
+      const int sa = sector_of_twin(f[1]), sb = sector_of_twin(f[3]);
+      const int sz = 3 - sa - sb;
+      auto q_between = [&](int s1, int s2) {
+        for(const End& en : ends) if((en.sa == s1 && en.sb == s2) || (en.sa == s2 && en.sb == s1)) return en.q;
+        CGAL_assertion(false);
+        return NONE;
+      };
+      const Index z = tw[std::size_t(sz)], qaz = q_between(sa, sz), qbz = q_between(sb, sz);
+      const typename HexMesh::Hexahedron hx{{f[0], f[1], f[2], f[3], z, qaz, c, qbz}};
+      // the patches of the sectors' faces
+      int patch[3] = {6, 6, 6};
+      const auto& F = vertex_top_faces[c];
+      for(std::size_t i = 0; i < F.size(); ++i) patch[fans[c].sector[i]] = m.boundary_faces[top_faces[F[i]]].patch;
+      const Index cell = add_cell(hx, int(m.boundary_faces[top_faces[F[0]]].cell));
+      add_top({{f[1], f[2], c, qaz}}, cell, patch[sa]);   // local face 1 (1, 2, 6, 5)
+      add_top({{f[3], qbz, c, f[2]}}, cell, patch[sb]);   // local face 3 (3, 7, 6, 2)
+      add_top({{z, qaz, c, qbz}}, cell, patch[sz]);       // local face 5 (4, 5, 6, 7)
+    }
+    // the copies start on their sector's side: at the mean centre of its faces, on the surface
+    std::vector<Vec3> sum(P.size(), Vec3{{0, 0, 0}});
+    std::vector<int> n(P.size(), 0);
+    for(const auto& kf : fans) {
+      const auto& F = vertex_top_faces[kf.first];
+      for(std::size_t i = 0; i < F.size(); ++i) {
+        const Index tw = sector_vertex(kf.first, i);
+        Vec3 cc{{0, 0, 0}};
+        for(Index x : m.boundary_faces[top_faces[F[i]]].vertices) cc = add(cc, mul(P[x], 0.25));
+        sum[tw] = add(sum[tw], cc);
+        ++n[tw];
+      }
+    }
+    for(const auto& kf : fans) {
+      const auto& F = vertex_top_faces[kf.first];
+      for(std::size_t i = 0; i < F.size(); ++i) pillow_sector_faces[sector_vertex(kf.first, i)].push_back(F[i]);
+    }
+    for(const auto& kt : sector_twin)
+      for(Index tw : kt.second)
+        if(n[tw] > 0 && !on_other.count(tw)) P[tw] = clamp_planes(tw, vec(d.closest_point(Point_3(sum[tw][0] / n[tw], sum[tw][1] / n[tw], sum[tw][2] / n[tw]))));
+    build_adjacency();
   }
 
   Vec3 point_at(std::size_t c, const std::vector<double>& arc, double s) const
@@ -986,6 +1417,19 @@ private:
       int best = -1, bc = -1;
       for(const auto& x : vvotes[v]) if(x.second > bc || (x.second == bc && x.first < best)) { bc = x.second; best = x.first; }
       vregion[v] = best;
+    }
+    // a pillow's copy of a chain vertex lies on its sector's region: the one most of the sector's
+    // faces have (the pillow's own faces, along the curve, are left out: their centres are
+    // often closer to the other side)
+    for(const auto& ps : pillow_sector_faces) {
+      std::map<int, int> count;
+      for(std::size_t f : ps.second) ++count[face_region[f]];
+      int best = -1, bc = -1;
+      for(const auto& x : count) if(x.second > bc) { bc = x.second; best = x.first; }
+      if(best < 0) continue;
+      vregion[ps.first] = best;
+      for(std::size_t f : vertex_top_faces[ps.first])
+        if(std::find(ps.second.begin(), ps.second.end(), f) == ps.second.end()) face_region[f] = best;
     }
     for(Index i = 0; i < nf; ++i) {
       const std::size_t r = std::size_t(face_region[i]);
@@ -1552,30 +1996,77 @@ private:
       if(!(cell_quality(Index(c)) > opt.min_valid_quality)) { gone[c] = 1; ++n; }
     for(Index c : also) if(c >= first && !gone[c]) { gone[c] = 1; ++n; }
     if(n == 0) return;
-    // side faces of the buffer cells, by their bottom edge
-    std::unordered_map<std::uint64_t, std::vector<std::pair<Index, int>>> by_edge;
+    // the faces of the buffer cells (pillows included), by their sorted corners
+    typedef std::array<Index, 4> Quad;
+    struct Quad_hash
+    {
+      std::size_t operator()(const Quad& q) const
+      {
+        std::uint64_t h = 1469598103934665603ull;
+        for(Index x : q) h = (h ^ x) * 1099511628211ull;
+        return std::size_t(h);
+      }
+    };
+    auto sorted = [](Quad q) { std::sort(q.begin(), q.end()); return q; };
+    auto face_of = [&](Index c, int fi) {
+      Quad q;
+      for(int i = 0; i < 4; ++i) q[std::size_t(i)] = m.hexahedra[c][std::size_t(hex_local_faces()[std::size_t(fi)][std::size_t(i)])];
+      return q;
+    };
+    std::unordered_map<Quad, std::vector<std::pair<Index, int>>, Quad_hash> by_face;
     for(std::size_t c = first; c < m.hexahedra.size(); ++c)
-      for(int i = 0; i < 4; ++i)
-        by_edge[capture_edge_key(m.hexahedra[c][i], m.hexahedra[c][(i + 1) % 4])].push_back({Index(c), i});
+      for(int fi = 0; fi < 6; ++fi) by_face[sorted(face_of(Index(c), fi))].push_back({Index(c), fi});
     std::unordered_map<Index, std::array<Index, 2>> masters_of;
+    std::unordered_map<std::uint64_t, Index> mid;
     for(const auto& hn : m.hanging_nodes)
-      if(hn.number_of_masters == 2) masters_of[hn.vertex] = {{hn.masters[0], hn.masters[1]}};
-    // a removed fine cell takes the coarse buffer cell beside it (whose side it half covers) along
+      if(hn.number_of_masters == 2) {
+        masters_of[hn.vertex] = {{hn.masters[0], hn.masters[1]}};
+        mid[capture_edge_key(hn.masters[0], hn.masters[1])] = hn.vertex;
+      }
+    auto cells_with = [&](const Quad& q, Index except, std::vector<std::pair<Index, int>>& out) {
+      auto it = by_face.find(sorted(q));
+      if(it != by_face.end()) for(const auto& x : it->second) if(x.first != except) out.push_back(x);
+    };
+    // the cells across a face: the same quad, or the two halves of it split at hanging midpoints
+    auto across = [&](Index c, int fi, std::vector<std::pair<Index, int>>& out) {
+      out.clear();
+      const Quad q = face_of(c, fi);
+      cells_with(q, c, out);
+      if(!out.empty()) return;
+      for(int s_ = 0; s_ < 2; ++s_) {
+        const Index a = q[std::size_t(s_)], b = q[std::size_t(s_ + 1)], c2 = q[std::size_t(s_ + 2)], d2 = q[std::size_t((s_ + 3) % 4)];
+        auto m1 = mid.find(capture_edge_key(a, b)), m2 = mid.find(capture_edge_key(d2, c2));
+        if(m1 == mid.end() || m2 == mid.end()) continue;
+        cells_with({{a, m1->second, m2->second, d2}}, c, out);
+        cells_with({{m1->second, b, c2, m2->second}}, c, out);
+      }
+    };
+    // the whole face a half face belongs to (the half's two corners hanging on its edges)
+    auto other_master = [&](Index x, Index p) {
+      auto it = masters_of.find(x);
+      if(it == masters_of.end()) return NONE;
+      return it->second[0] == p ? it->second[1] : it->second[1] == p ? it->second[0] : NONE;
+    };
+    auto whole_of = [&](const Quad& q, Quad& out) {
+      for(int s_ = 0; s_ < 4; ++s_) {
+        const Index a = q[std::size_t(s_)], b = q[std::size_t((s_ + 1) % 4)], c2 = q[std::size_t((s_ + 2) % 4)], d2 = q[std::size_t((s_ + 3) % 4)];
+        const Index r1 = other_master(b, a), r2 = other_master(c2, d2);
+        if(r1 != NONE && r2 != NONE) { out = {{a, r1, r2, d2}}; return true; }
+      }
+      return false;
+    };
+    // a removed fine cell takes the coarse cell beside it (whose face it half covers) along
+    std::vector<std::pair<Index, int>> nb;
     for(bool changed = true; changed;) {
       changed = false;
       for(std::size_t c = first; c < m.hexahedra.size(); ++c) {
         if(!gone[c]) continue;
-        for(int i = 0; i < 4; ++i) {
-          const Index a = m.hexahedra[c][i], b = m.hexahedra[c][(i + 1) % 4];
-          for(Index hv : {a, b}) {
-            auto mo = masters_of.find(hv);
-            if(mo == masters_of.end()) continue;
-            const Index other = hv == a ? b : a;
-            if(mo->second[0] != other && mo->second[1] != other) continue;
-            auto e = by_edge.find(capture_edge_key(mo->second[0], mo->second[1]));
-            if(e == by_edge.end()) continue;
-            for(const auto& ci : e->second) if(!gone[ci.first]) { gone[ci.first] = 1; ++n; changed = true; }
-          }
+        for(int fi = 0; fi < 6; ++fi) {
+          Quad w;
+          if(!whole_of(face_of(Index(c), fi), w)) continue;
+          nb.clear();
+          cells_with(w, Index(c), nb);
+          for(const auto& x : nb) if(!gone[x.first]) { gone[x.first] = 1; ++n; changed = true; }
         }
       }
     }
@@ -1586,33 +2077,24 @@ private:
       if(f.cell >= first) top_patch[f.cell] = f.patch;
       if(!gone[f.cell]) faces.push_back(f);
     }
-    auto side = [&](Index c, int i) {
+    // a buffer cell's side i (over its bottom edge i, i + 1), in the order the buffer made them
+    static const int side_of_face[6] = {3, 1, 0, 2, -1, -1};
+    auto exposed = [&](Index c, int fi) {
       const auto& h = m.hexahedra[c];
-      return std::array<Index, 4>{{h[i], h[(i + 1) % 4], h[(i + 1) % 4 + 4], h[i + 4]}};
+      const int i = side_of_face[fi];
+      if(buffer_owner[c - first] == NONE || i < 0) return face_of(c, fi);
+      return Quad{{h[std::size_t(i)], h[std::size_t((i + 1) % 4)], h[std::size_t((i + 1) % 4 + 4)], h[std::size_t(i + 4)]}};
     };
-    std::unordered_map<std::uint64_t, Index> mid;
-    for(const auto& hn : m.hanging_nodes)
-      if(hn.number_of_masters == 2) mid[capture_edge_key(hn.masters[0], hn.masters[1])] = hn.vertex;
     for(std::size_t c = first; c < m.hexahedra.size(); ++c) {
       if(!gone[c]) continue;
       const auto& h = m.hexahedra[c];
       // the staircase face becomes a boundary face of the cell under it
-      const std::array<Index, 4> bottom{{h[0], h[1], h[2], h[3]}};
-      faces.push_back({bottom, buffer_owner[c - first], top_patch[c]});
-      // neighbours across each side (the same edge, or its two halves around a hanging midpoint)
-      for(int i = 0; i < 4; ++i) {
-        const Index a = h[i], b = h[(i + 1) % 4];
-        std::vector<std::uint64_t> keys{capture_edge_key(a, b)};
-        auto it = mid.find(keys[0]);
-        if(it != mid.end()) { keys = {capture_edge_key(a, it->second), capture_edge_key(it->second, b)}; }
-        for(std::uint64_t k : keys) {
-          auto e = by_edge.find(k);
-          if(e == by_edge.end()) continue;
-          for(const auto& ci : e->second)
-            if(ci.first != c && !gone[ci.first]) {
-              faces.push_back({side(ci.first, ci.second), ci.first, top_patch[ci.first]});
-            }
-        }
+      if(buffer_owner[c - first] != NONE)
+        faces.push_back({Quad{{h[0], h[1], h[2], h[3]}}, buffer_owner[c - first], top_patch[c]});
+      for(int fi : {2, 1, 3, 0, 4, 5}) {
+        across(Index(c), fi, nb);
+        for(const auto& x : nb)
+          if(!gone[x.first]) faces.push_back({exposed(x.first, x.second), x.first, top_patch[x.first]});
       }
     }
     // compact the cells
@@ -1696,6 +2178,7 @@ private:
   std::vector<int> curve_of;
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::unordered_set<std::uint64_t> feature_edges;
+  std::map<Index, std::vector<std::size_t>> pillow_sector_faces;   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
   std::vector<std::vector<Triangle_3>> region_triangles;
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
