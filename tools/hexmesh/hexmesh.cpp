@@ -245,9 +245,8 @@ int main(int argc, char** argv)
   app.add_option("--max-level", max_level, "most refinement levels below the initial grid")->check(CLI::Range(0, 20));
   app.add_option("--max-cells", max_cells, "stop refining before the grid exceeds this many cells (the mesh stays valid; "
                                            "a warning says so)");
-  app.add_flag("--feature-pillows", feature_pillows, "experimental: a sheet of hexahedra along each convex sharp curve, "
-                                                  "two boundary faces meeting at the curve (sharper features; the worst "
-                                                  "cells may get worse where chains turn often)");
+  app.add_flag("--feature-pillows", feature_pillows, "experimental: a sheet of hexahedra along each convex sharp curve whose "
+                                                  "chain runs within half a cell of it, two boundary faces meeting at the curve");
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-name", patch_name_rules, "REGEX=NAME: rename the patches whose whole name matches REGEX "

@@ -301,6 +301,7 @@ public:
     double max_split_face_warp = 0.05;      ///< faces split in four warped beyond this (x edge) are repaired last
     double max_non_orthogonality = 50;      ///< degrees: the cells at faces beyond it are worked on after the repairs
     bool feature_pillows = false;           ///< convex sharp curves get a sheet of hexahedra along their chain (`pillow_chains()`)
+    double pillow_max_offset = 0.5;         ///< ... if their chain's vertices lie this close to the curve on average (x local size) before snapping
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -1013,8 +1014,17 @@ private:
         const std::uint64_t key = capture_edge_key(tris[t][std::size_t(k)], tris[t][std::size_t((k + 1) % 3)]);
         if(curve_edges.count(key)) edge_triangles[key].push_back(t);
       }
-    for(const auto& cp : captured)
-      if(cp.first < fc->curves().size() && convex_curve(cp.first, cp.second, edge_triangles)) pillow[cp.first] = 1;
+    // (and whose chain runs close to the curve: a chain a row of faces off it leaves that row to
+    // cross the curve, which the pillow makes worse - measured on t20_part and fandisk)
+    for(const auto& cp : captured) {
+      if(!(cp.first < fc->curves().size() && convex_curve(cp.first, cp.second, edge_triangles))) continue;
+      double sum = 0;
+      std::size_t n = 0;
+      for(const Piece& pc : cp.second)
+        for(Index v : pc.path) { sum += norm(sub(closest_on_curve(P[v], int(cp.first)), P[v])) / hloc[v]; ++n; }
+      if(n > 0 && sum <= opt.pillow_max_offset * double(n)) pillow[cp.first] = 1;
+    }
+    curve_edge_triangles = edge_triangles;
     Fan fan;
     for(bool changed = true; changed;) {
       changed = false;
@@ -1269,6 +1279,7 @@ private:
       const auto& F = vertex_top_faces[kf.first];
       for(std::size_t i = 0; i < F.size(); ++i) pillow_sector_faces[sector_vertex(kf.first, i)].push_back(F[i]);
     }
+    pillow_twins = sector_twin;
     for(const auto& kt : sector_twin)
       for(Index tw : kt.second)
         if(n[tw] > 0 && !on_other.count(tw)) P[tw] = clamp_planes(tw, vec(d.closest_point(Point_3(sum[tw][0] / n[tw], sum[tw][1] / n[tw], sum[tw][2] / n[tw]))));
@@ -1421,11 +1432,72 @@ private:
     // a pillow's copy of a chain vertex lies on its sector's region: the one most of the sector's
     // faces have (the pillow's own faces, along the curve, are left out: their centres are
     // often closer to the other side)
+    std::map<Index, int> twin_region;
     for(const auto& ps : pillow_sector_faces) {
       std::map<int, int> count;
       for(std::size_t f : ps.second) ++count[face_region[f]];
       int best = -1, bc = -1;
       for(const auto& x : count) if(x.second > bc) { bc = x.second; best = x.first; }
+      twin_region[ps.first] = best;
+    }
+    // the two copies at a vertex of a pillowed curve take the two regions of the input's triangles
+    // at the curve there (the chain may run a row of faces off the curve, both sectors' faces
+    // then lying on one region): the copy whose sector lies more towards a triangle takes its region
+    for(const auto& kt : pillow_twins) {
+      const Index t = kt.first;
+      if(kt.second.size() != 2 || kind[t] != CURVE || curve_of[t] < 0 || std::size_t(curve_of[t]) >= fc->curves().size()) continue;
+      const std::size_t c = std::size_t(curve_of[t]);
+      const auto cp = curve_trees[c]->closest_point_and_primitive(Point_3(P[t][0], P[t][1], P[t][2]));
+      const std::size_t i = std::size_t(cp.second - curve_segments[c].begin());
+      const auto& cv = fc->curves()[c].vertices;
+      auto et = curve_edge_triangles.find(capture_edge_key(cv[i], cv[(i + 1) % cv.size()]));
+      if(et == curve_edge_triangles.end() || et->second.size() != 2) continue;
+      const int r1 = tri_region[et->second[0]], r2 = tri_region[et->second[1]];
+      if(r1 == r2) continue;
+      auto centroid = [&](Index T) {
+        const auto& tr = d.triangle(T);
+        return mul(add(add(vec(tr[0]), vec(tr[1])), vec(tr[2])), 1.0 / 3.0);
+      };
+      auto side = [&](Index tw) {
+        Vec3 g{{0, 0, 0}};
+        int n = 0;
+        for(std::size_t f : pillow_sector_faces[tw]) {
+          for(Index x : m.boundary_faces[top_faces[f]].vertices) g = add(g, mul(P[x], 0.25));
+          ++n;
+        }
+        return n > 0 ? mul(g, 1.0 / n) : P[t];
+      };
+      const Vec3 e = sub(centroid(et->second[0]), centroid(et->second[1]));
+      const bool a_first = dot(sub(side(kt.second[0]), side(kt.second[1])), e) >= 0;
+      twin_region[kt.second[0]] = a_first ? r1 : r2;
+      twin_region[kt.second[1]] = a_first ? r2 : r1;
+      // each copy starts at its sector's centre projected onto its region; if that lands near
+      // the curve (the sector's faces lie on the other side), half a cell into its triangle's
+      // plane, square to the curve
+      const Vec3 a = vec(fc->point(cv[i])), b = vec(fc->point(cv[(i + 1) % cv.size()]));
+      const Vec3 dir = sub(b, a);
+      const double dl = dot(dir, dir);
+      for(int k = 0; k < 2; ++k) {
+        const Index tw = kt.second[std::size_t(k)];
+        const Index T = et->second[std::size_t((k == 0) == a_first ? 0 : 1)];
+        Vec3 off = sub(centroid(T), a);
+        if(dl > 0) off = sub(off, mul(dir, dot(off, dir) / dl));
+        const double l = norm(off);
+        const int r = twin_region[tw];
+        if(r >= 0 && std::size_t(r) < region_triangles.size() && !region_triangles[std::size_t(r)].empty()) {
+          if(!region_trees[std::size_t(r)]) {
+            region_trees[std::size_t(r)] = std::make_unique<Tree>(region_triangles[std::size_t(r)].begin(), region_triangles[std::size_t(r)].end());
+            region_trees[std::size_t(r)]->accelerate_distance_queries();
+          }
+          const Vec3 on = closest_on_surface(side(tw), r);
+          if(norm(sub(on, P[t])) >= 0.3 * hloc[tw]) { P[tw] = clamp_planes(tw, on); continue; }
+        }
+        if(!(l > 0)) continue;
+        P[tw] = clamp_planes(tw, add(P[t], mul(off, 0.5 * hloc[tw] / l)));
+      }
+    }
+    for(const auto& ps : pillow_sector_faces) {
+      const int best = twin_region[ps.first];
       if(best < 0) continue;
       vregion[ps.first] = best;
       for(std::size_t f : vertex_top_faces[ps.first])
@@ -2178,7 +2250,9 @@ private:
   std::vector<int> curve_of;
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::unordered_set<std::uint64_t> feature_edges;
-  std::map<Index, std::vector<std::size_t>> pillow_sector_faces;   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
+  std::map<Index, std::vector<std::size_t>> pillow_sector_faces;
+  std::map<Index, std::vector<Index>> pillow_twins;   // a pillowed chain vertex -> its copies, one per sector
+  std::unordered_map<std::uint64_t, std::vector<Index>> curve_edge_triangles;   // input curve edge -> its triangles   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
   std::vector<std::vector<Triangle_3>> region_triangles;
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
