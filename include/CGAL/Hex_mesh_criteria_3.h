@@ -53,6 +53,13 @@ struct Cell_3
   /// than 120 degrees apart); infinite if none. Only computed when the criteria refine thin parts
   /// and the cell is cut and larger than their smallest size.
   double thickness = std::numeric_limits<double>::infinity();
+  /// the smallest surface size asked by the patches (`Hex_mesh_criteria_3::set_patch_size()`) of
+  /// the input triangles meeting the cell (exact test); infinite if none asks. Only computed when
+  /// the criteria have patch sizes and the cell is cut and larger than the smallest of them.
+  double patch_size = std::numeric_limits<double>::infinity();
+  /// the same for the patches' sizes where the surface bends (`normal_spread` beyond the
+  /// curvature angle); infinite if none asks
+  double patch_curvature_size = std::numeric_limits<double>::infinity();
 
   /// length of the longest of the 12 edges
   FT size() const
@@ -159,6 +166,18 @@ public:
     m_thin_cells = cells;
     m_thin_min_size = min_size;
   }
+  /// cut cells meeting an input triangle of patch `patch` (`Surface_domain_3::patch()`) get size
+  /// at most `size`, and at most `curvature_size` where the surface normals in the cell differ by
+  /// more than the curvature angle (0: no such size) - snappyHexMesh's per-surface `level (L1 L2)`
+  /// \pre `patch >= 0 && size > 0 && curvature_size >= 0`
+  void set_patch_size(int patch, FT size, FT curvature_size = 0)
+  {
+    CGAL_precondition(patch >= 0 && size > 0 && curvature_size >= 0);
+    if(m_patch_sizes.size() <= std::size_t(patch)) m_patch_sizes.resize(std::size_t(patch) + 1, {FT(0), FT(0)});
+    m_patch_sizes[std::size_t(patch)] = {size, curvature_size};
+  }
+  /// the angle (degrees) beyond which the curvature sizes apply (the global one and the patches')
+  void set_curvature_angle(double angle) { m_curvature_angle = angle; }
   /// every region of one level gets at least `n` cells of the next coarser level around it
   /// before a coarser one (1: the plain 2:1 balance across faces and edges)
   /// \pre `n >= 1 && n <= 16`
@@ -186,6 +205,8 @@ public:
   /// the cells of each level between two transitions of the balanced grid (1: plain 2:1)
   int cells_between_levels() const { return m_cells_between_levels; }
   const std::vector<std::pair<Bbox_3, FT>>& refinement_boxes() const { return m_boxes; }
+  /// per patch index: (surface size, curvature size) asked, (0, 0) where none is
+  const std::vector<std::pair<FT, FT>>& patch_sizes() const { return m_patch_sizes; }
   /// @}
 
   /// is `c` bad? The first failing elementary criterion wins; the priority is the ratio of the
@@ -201,6 +222,11 @@ public:
       const FT ss = m_surface_size_field ? m_surface_size_field(c.center()) : m_surface_size_value;
       if(exceeds(s, ss)) return Is_cell_bad(s / ss);
     }
+    if(c.is_cut && c.patch_size < std::numeric_limits<double>::infinity() && exceeds(s, FT(c.patch_size)))
+      return Is_cell_bad(s / FT(c.patch_size));
+    if(c.is_cut && c.patch_curvature_size < std::numeric_limits<double>::infinity() && c.normal_spread > m_curvature_angle &&
+       exceeds(s, FT(c.patch_curvature_size)))
+      return Is_cell_bad(s / FT(c.patch_curvature_size));
     if(c.meets_feature && m_feature_size > 0 && exceeds(s, m_feature_size)) return Is_cell_bad(s / m_feature_size);
     if(c.is_cut && m_curvature_size > 0 && c.normal_spread > m_curvature_angle && exceeds(s, m_curvature_size))
       return Is_cell_bad(s / m_curvature_size);
@@ -231,6 +257,7 @@ private:
   }
 
   FT m_cell_size_value, m_surface_size_value;
+  std::vector<std::pair<FT, FT>> m_patch_sizes;
   Size_field m_cell_size_field, m_surface_size_field;
   int m_max_level;
   FT m_feature_size = 0;

@@ -268,6 +268,53 @@ def main():
         check(0 < fp["boundary"]["pillow_cells"] < pil["boundary"]["pillow_cells"] * 10,
               f"fandisk: some pillows ({fp['boundary']['pillow_cells']} cells)")
 
+    # per-part surface sizes: a unit box whose top face is the part "lid"; as a staircase the cells
+    # keep their boxes, so the sizes can be read off exactly
+    print("[patch size]")
+    box_obj = os.path.join(args.work, "box_lid.obj")
+    with open(box_obj, "w") as f:
+        for z in (0, 1):
+            for y in (0, 1):
+                for x in (0, 1):
+                    f.write(f"v {x} {y} {z}\n")
+        vid = lambda x, y, z: 1 + x + 2 * y + 4 * z
+        quads = {"body": [[(0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)], [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1)],
+                          [(0, 1, 0), (0, 1, 1), (1, 1, 1), (1, 1, 0)], [(0, 0, 0), (0, 0, 1), (0, 1, 1), (0, 1, 0)],
+                          [(1, 0, 0), (1, 1, 0), (1, 1, 1), (1, 0, 1)]],
+                 "lid": [[(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]]}
+        for g, qs in quads.items():
+            f.write(f"g {g}\n")
+            for q in qs:
+                a, b, c, d = [vid(*v) for v in q]
+                f.write(f"f {a} {b} {c}\nf {a} {c} {d}\n")
+    stair = ["--staircase", "--size", "0.25", "--surface-size", "0.125"]
+    plain_box = os.path.join(args.work, "box_plain.vtu")
+    r = run([args.hexmesh, box_obj, "-o", plain_box, "-q"] + stair)
+    check(r.returncode == 0, "hexmesh meshes the box without --patch-size")
+    res = mesh_case(args, box_obj, stair + ["--patch-size", "lid=0.03125"], "box_patch_size")
+    if res and r.returncode == 0:
+        import meshio
+        import numpy as np
+        def boxes(path):
+            vm = meshio.read(path)
+            p = vm.points[vm.cells_dict["hexahedron"]]
+            lo, hi = p.min(axis=1), p.max(axis=1)
+            return lo, hi, (hi - lo).max(axis=1)
+        lo0, hi0, h0 = boxes(plain_box)
+        lo1, hi1, h1 = boxes(os.path.join(res[0], "mesh.vtu"))
+        check(abs(hi0[:, 2].max() - 0.875) < 1e-9, f"without: the staircase stops a surface size (1/8) under the lid ({hi0[:, 2].max()})")
+        check(abs(hi1[:, 2].max() - 0.96875) < 1e-9, f"lid=1/32: the staircase stops 1/32 under the lid ({hi1[:, 2].max()})")
+        under_lid = hi1[:, 2] > 0.96875 - 1e-9
+        check(under_lid.any() and h1[under_lid].max() <= 0.03125 * (1 + 1e-9), f"the cells under the lid are 1/32 ({h1[under_lid].max()})")
+        bottom = lo1[:, 2] < 0.125 + 1e-9
+        check(bottom.any() and abs(h1[bottom].min() - 0.125) < 1e-9, f"the cells over the bottom (part body) stay 1/8 ({h1[bottom].min()})")
+        check(res[1]["options"].get("patch_size") == ["lid=0.03125"], "the report gives the rule")
+    for bad, what in ((["--patch-size", "nothing=0.1"], "no input part matches"), (["--patch-size", "lid=0.1:0.2"], "HFINE <= H"),
+                      (["--patch-size", "lid=abc"], "expected H or H:HFINE")):
+        r = run([args.hexmesh, box_obj, "-o", os.path.join(args.work, "bad_patch.vtu"), "-q"] + stair + bad)
+        check(r.returncode == 2 and what in r.stderr and not os.path.exists(os.path.join(args.work, "bad_patch.vtu")),
+              f"{' '.join(bad)}: exit 2, '{what}', nothing written (got {r.returncode}: {r.stderr.strip()[:120]})")
+
     # determinism: byte-identical outputs
     print("[determinism]")
     d = os.path.join(args.work, "determinism")

@@ -192,7 +192,7 @@ int main(int argc, char** argv)
       "Exit codes: 0 success; 1 usage error; 2 input error (unreadable input, bad seed, or a leak with\n"
       "--strict); 3 output error (exists without --force, or not writable); 4 the mesh failed a validity\n"
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
-  std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, feature_files;
+  std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, patch_size_rules, feature_files;
   double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0, feature_scale = -1, feature_contrast = 3;
   double curvature_size = 0, curvature_angle = 30, thin_size = 0;
   int thin_cells = 0, cells_between_levels = 1;
@@ -249,6 +249,9 @@ int main(int argc, char** argv)
                                                   "chain runs within half a cell of it, two boundary faces meeting at the curve");
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
+  app.add_option("--patch-size", patch_size_rules, "REGEX=H[:HFINE]: cut cells meeting the input parts whose whole name "
+                                                   "matches REGEX get at most H (HFINE where the surface bends beyond "
+                                                   "--curvature-angle); the input's part names, before --patch-name (repeatable)");
   app.add_option("--patch-name", patch_name_rules, "REGEX=NAME: rename the patches whose whole name matches REGEX "
                                                    "(NAME may use $1...); patches given the same name are merged (repeatable)");
   app.add_option("--patch-type", patch_type_rules, "REGEX=TYPE: set the type of the patches matching REGEX (after renaming) "
@@ -393,6 +396,33 @@ int main(int argc, char** argv)
     if(thin_cells > 0) criteria.set_thin_part_refinement(thin_cells, thin_size);
     criteria.set_cells_between_levels(cells_between_levels);
     for(const auto& rb : rboxes) criteria.add_refinement_box(rb.first, rb.second);
+    // per-part surface sizes: each rule must match a part of the input; a later rule wins
+    for(const Rule& r : parse_rules(patch_size_rules, "--patch-size")) {
+      double h = 0, hf = 0;
+      const auto colon = r.value.find(':');
+      try {
+        std::size_t used = 0;
+        h = std::stod(r.value.substr(0, colon), &used);
+        if(used != r.value.substr(0, colon).size()) throw std::invalid_argument("trailing");
+        if(colon != std::string::npos) {
+          hf = std::stod(r.value.substr(colon + 1), &used);
+          if(used != r.value.substr(colon + 1).size()) throw std::invalid_argument("trailing");
+        }
+      } catch(const std::exception&) {
+        throw HM::Input_error("--patch-size '" + r.text + "=" + r.value + "': expected H or H:HFINE", HM::Input_error_cause::BAD_PARAMETER);
+      }
+      if(!(h > 0) || !(hf >= 0) || (hf > 0 && hf > h) || !std::isfinite(h) || !std::isfinite(hf))
+        throw HM::Input_error("--patch-size '" + r.text + "=" + r.value + "': sizes must be positive and HFINE <= H", HM::Input_error_cause::BAD_PARAMETER);
+      bool any = false;
+      for(std::size_t p = 0; p < domain.patch_names().size(); ++p)
+        if(std::regex_match(domain.patch_names()[p], r.re)) { criteria.set_patch_size(int(p), h, hf); any = true; }
+      if(!any) {
+        std::string names;
+        for(const auto& n : domain.patch_names()) names += (names.empty() ? "" : ", ") + n;
+        throw HM::Input_error("--patch-size '" + r.text + "': no input part matches (parts: " + names + ")", HM::Input_error_cause::BAD_PARAMETER);
+      }
+    }
+    if(!patch_size_rules.empty()) criteria.set_curvature_angle(curvature_angle);
     // feature curves: reported, refined to --feature-size, followed by the boundary
     t = std::chrono::steady_clock::now();
     HM::Feature_curves_3<K>::Options fopt = HM::default_feature_curve_options<K>(criteria);
@@ -592,7 +622,7 @@ int main(int argc, char** argv)
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},
-                      {"patch_name", patch_name_rules}, {"patch_type", patch_type_rules}};
+                      {"patch_name", patch_name_rules}, {"patch_size", patch_size_rules}, {"patch_type", patch_type_rules}};
       j["input_summary"] = {{"polygons_read", read_polygons}, {"points_read", read_points},
                             {"triangles", domain.number_of_triangles()}, {"parts", domain.patch_names().size()},
                             {"components", sum.components}, {"boundary_edges", sum.boundary_edges},

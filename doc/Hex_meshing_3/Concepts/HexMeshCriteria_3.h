@@ -64,6 +64,12 @@ public:
   /// 1 asks for the plain 2:1 balance across faces and edges (see the user manual, "Balance")
   int cells_between_levels() const;
 
+  /// per patch index of the domain: the (surface size, curvature size) asked for the cut cells
+  /// meeting that patch's triangles, (0, 0) where none is; the mesher sets `Cell::patch_size`
+  /// and `Cell::patch_curvature_size` (and `Cell::normal_spread`) for the cut cells larger than
+  /// the smallest of them
+  const std::vector<std::pair<FT, FT>>& patch_sizes() const;
+
   /// @}
 
   /// \name Operations

@@ -162,6 +162,14 @@ public:
   {
     m_use_features = m_domain.has_feature_edges() && m_criteria.feature_size() > 0;
     m_curvature_size = CGAL::to_double(m_criteria.curvature_size());
+    m_patch_sizes.clear();
+    for(const auto& ps : m_criteria.patch_sizes()) m_patch_sizes.push_back({CGAL::to_double(ps.first), CGAL::to_double(ps.second)});
+    m_min_patch_size = m_min_patch_fine = std::numeric_limits<double>::infinity();
+    for(const auto& ps : m_patch_sizes) {
+      if(ps.first > 0) m_min_patch_size = (std::min)(m_min_patch_size, ps.first);
+      if(ps.second > 0) m_min_patch_fine = (std::min)(m_min_patch_fine, ps.second);
+    }
+    m_min_patch_size = (std::min)(m_min_patch_size, m_min_patch_fine);
     m_thin_cells = m_criteria.thin_part_cells();
     m_thin_min_size = CGAL::to_double(m_criteria.thin_part_min_size());
     m_use_lines = m_use_features && !m_domain.feature_segments().empty();
@@ -300,12 +308,13 @@ public:
   // refinement asks; other uses of `make_cell()` do not pay for it)
   void measure(const Node& nd, Cell& c) const
   {
-    if(!c.is_cut || nd.list == 0 || (m_curvature_size <= 0 && m_thin_cells <= 0)) return;
+    if(!c.is_cut || nd.list == 0 || (m_curvature_size <= 0 && m_thin_cells <= 0 && m_patch_sizes.empty())) return;
     const Bbox_3 b = node_bbox(nd);
     const double h = (std::max)({b.xmax() - b.xmin(), b.ymax() - b.ymin(), b.zmax() - b.zmin()});
-    const bool spread = m_curvature_size > 0 && h > m_curvature_size * (1 + 1e-9);
+    const bool spread = (m_curvature_size > 0 && h > m_curvature_size * (1 + 1e-9)) || h > m_min_patch_fine * (1 + 1e-9);
     const bool thin = m_thin_cells > 0 && h > m_thin_min_size * (1 + 1e-9);
-    if(!spread && !thin) return;
+    const bool patch = h > m_min_patch_size * (1 + 1e-9);
+    if(!spread && !thin && !patch) return;
     // the triangles meeting the cell (exact test) and their unit normals, in list order, once
     std::vector<std::pair<std::uint32_t, Vec3>> meets;
     for(std::uint32_t t : m_lists[nd.list]) {
@@ -314,6 +323,14 @@ public:
     }
     if(spread) c.normal_spread = normal_spread(meets);
     if(thin) c.thickness = thickness(b, meets);
+    if(patch)
+      for(const auto& mt : meets) {
+        const int p = m_domain.patch(mt.first);
+        if(p < 0 || std::size_t(p) >= m_patch_sizes.size()) continue;
+        const auto& ps = m_patch_sizes[std::size_t(p)];
+        if(ps.first > 0) c.patch_size = (std::min)(c.patch_size, ps.first);
+        if(ps.second > 0) c.patch_curvature_size = (std::min)(c.patch_curvature_size, ps.second);
+      }
   }
 
   // the unit normal of triangle t (false if it is degenerate in double precision)
@@ -1019,6 +1036,8 @@ private:
   std::vector<Region_leak> m_leaks;
   bool m_use_features = false, m_use_lines = false;
   double m_curvature_size = 0;   // the criteria's curvature size (0: normal spreads not computed)
+  std::vector<std::pair<double, double>> m_patch_sizes;   // the criteria's per-patch sizes
+  double m_min_patch_size = std::numeric_limits<double>::infinity(), m_min_patch_fine = std::numeric_limits<double>::infinity();
   int m_thin_cells = 0;          // the criteria's cells across thin parts (0: thicknesses not computed)
   double m_thin_min_size = 0;
   int m_near_layers = 0;
