@@ -309,6 +309,19 @@ def main():
         bottom = lo1[:, 2] < 0.125 + 1e-9
         check(bottom.any() and abs(h1[bottom].min() - 0.125) < 1e-9, f"the cells over the bottom (part body) stay 1/8 ({h1[bottom].min()})")
         check(res[1]["options"].get("patch_size") == ["lid=0.03125"], "the report gives the rule")
+    # HFINE of a rule covering the only part is the global HFINE: same grid, byte for byte; without
+    # it the surface size is too coarse for eight's handles (the region is empty)
+    fine = os.path.join(args.work, "eight_fine_global.vtu")
+    fine_p = os.path.join(args.work, "eight_fine_patch.vtu")
+    coarse = os.path.join(args.work, "eight_coarse.vtu")
+    eight = os.path.join(args.data, "eight.off")
+    common = ["-q", "--staircase", "--size", "0.4", "--curvature-angle", "20"]
+    r1 = run([args.hexmesh, eight, "-o", fine] + common + ["--surface-size", "0.1:0.025"])
+    r2 = run([args.hexmesh, eight, "-o", fine_p] + common + ["--surface-size", "0.1", "--patch-size", "eig.*=0.1:0.025"])
+    r3 = run([args.hexmesh, eight, "-o", coarse] + common + ["--surface-size", "0.1"])
+    check(r1.returncode == 0 and r2.returncode == 0 and filecmp.cmp(fine, fine_p, shallow=False),
+          "--patch-size eig.*=0.1:0.025 on eight gives the grid of --surface-size 0.1:0.025 (identical VTU)")
+    check(r3.returncode != 0 and "region is empty" in r3.stderr, "without HFINE the region is empty (so HFINE refined)")
     for bad, what in ((["--patch-size", "nothing=0.1"], "no input part matches"), (["--patch-size", "lid=0.1:0.2"], "HFINE <= H"),
                       (["--patch-size", "lid=abc"], "expected H or H:HFINE")):
         r = run([args.hexmesh, box_obj, "-o", os.path.join(args.work, "bad_patch.vtu"), "-q"] + stair + bad)
