@@ -401,17 +401,12 @@ int main(int argc, char** argv)
       double h = 0, hf = 0;
       const auto colon = r.value.find(':');
       try {
-        std::size_t used = 0;
-        h = std::stod(r.value.substr(0, colon), &used);
-        if(used != r.value.substr(0, colon).size()) throw std::invalid_argument("trailing");
-        if(colon != std::string::npos) {
-          hf = std::stod(r.value.substr(colon + 1), &used);
-          if(used != r.value.substr(colon + 1).size()) throw std::invalid_argument("trailing");
-        }
-      } catch(const std::exception&) {
+        h = parse_numbers(r.value.substr(0, colon), 1, "--patch-size")[0];
+        if(colon != std::string::npos) hf = parse_numbers(r.value.substr(colon + 1), 1, "--patch-size")[0];
+      } catch(const CLI::ValidationError&) {
         throw HM::Input_error("--patch-size '" + r.text + "=" + r.value + "': expected H or H:HFINE", HM::Input_error_cause::BAD_PARAMETER);
       }
-      if(!(h > 0) || !(hf >= 0) || (hf > 0 && hf > h) || !std::isfinite(h) || !std::isfinite(hf))
+      if(!(h > 0) || hf < 0 || hf > h)
         throw HM::Input_error("--patch-size '" + r.text + "=" + r.value + "': sizes must be positive and HFINE <= H", HM::Input_error_cause::BAD_PARAMETER);
       bool any = false;
       for(std::size_t p = 0; p < domain.patch_names().size(); ++p)

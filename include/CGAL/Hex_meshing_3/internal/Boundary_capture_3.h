@@ -944,8 +944,7 @@ private:
   // vertex of each triangle lies behind the other's plane, the planes oriented out of the mesh
   // (exact orientation tests; which side of the input the mesh is on is voted by the buffer's
   // vertices next to the chain, against their closest triangles)
-  bool convex_curve(std::size_t c, const std::vector<Piece>& pieces,
-                    const std::unordered_map<std::uint64_t, std::vector<Index>>& edge_triangles) const
+  bool convex_curve(std::size_t c, const std::vector<Piece>& pieces) const
   {
     const auto& tris = d.triangle_indices();
     const auto& X = d.points();
@@ -958,11 +957,11 @@ private:
     for(Index v : on_path)
       for(Index w : snbrs[v]) {
         if(on_path.count(w) || kind[w] != SURFACE || inner_of[w] == NONE || !seen.insert(w).second) continue;
-        const std::size_t T = d.closest_triangle(Point_3(P[w][0], P[w][1], P[w][2]));
+        const std::size_t T = d.closest_triangle(point(P[w]));
         if(d.is_two_sided(T)) return false;
         const auto& ti = tris[T];
         const Index iv = inner_of[w];
-        const CGAL::Orientation o = orientation(X[ti[0]], X[ti[1]], X[ti[2]], Point_3(P[iv][0], P[iv][1], P[iv][2]));
+        const CGAL::Orientation o = orientation(X[ti[0]], X[ti[1]], X[ti[2]], point(P[iv]));
         if(o == CGAL::NEGATIVE) ++vote;
         else if(o == CGAL::POSITIVE) --vote;
         ++voters;
@@ -973,8 +972,8 @@ private:
     const std::size_t ne = fc->curves()[c].closed ? cv.size() : cv.size() - 1;
     for(std::size_t i = 0; i < ne; ++i) {
       const Index a = cv[i], b = cv[(i + 1) % cv.size()];
-      auto it = edge_triangles.find(capture_edge_key(a, b));
-      if(it == edge_triangles.end() || it->second.size() != 2) return false;
+      auto it = curve_edge_triangles.find(capture_edge_key(a, b));
+      if(it == curve_edge_triangles.end() || it->second.size() != 2) return false;
       const auto& t1 = tris[it->second[0]];
       const auto& t2 = tris[it->second[1]];
       if(d.is_two_sided(it->second[0]) || d.is_two_sided(it->second[1])) return false;
@@ -1007,24 +1006,23 @@ private:
       for(std::size_t i = 0; i + 1 < cv.size(); ++i) curve_edges.insert(capture_edge_key(cv[i], cv[i + 1]));
       if(fc->curves()[cp.first].closed && cv.size() > 2) curve_edges.insert(capture_edge_key(cv.back(), cv.front()));
     }
-    std::unordered_map<std::uint64_t, std::vector<Index>> edge_triangles;
+    curve_edge_triangles.clear();
     const auto& tris = d.triangle_indices();
     for(Index t = 0; t < tris.size(); ++t)
       for(int k = 0; k < 3; ++k) {
         const std::uint64_t key = capture_edge_key(tris[t][std::size_t(k)], tris[t][std::size_t((k + 1) % 3)]);
-        if(curve_edges.count(key)) edge_triangles[key].push_back(t);
+        if(curve_edges.count(key)) curve_edge_triangles[key].push_back(t);
       }
     // (and whose chain runs close to the curve: a chain a row of faces off it leaves that row to
     // cross the curve, which the pillow makes worse - measured on t20_part and fandisk)
     for(const auto& cp : captured) {
-      if(!(cp.first < fc->curves().size() && convex_curve(cp.first, cp.second, edge_triangles))) continue;
+      if(!(cp.first < fc->curves().size() && convex_curve(cp.first, cp.second))) continue;
       double sum = 0;
       std::size_t n = 0;
       for(const Piece& pc : cp.second)
         for(Index v : pc.path) { sum += norm(sub(closest_on_curve(P[v], int(cp.first)), P[v])) / hloc[v]; ++n; }
       if(n > 0 && sum <= opt.pillow_max_offset * double(n)) pillow[cp.first] = 1;
     }
-    curve_edge_triangles = edge_triangles;
     Fan fan;
     for(bool changed = true; changed;) {
       changed = false;
@@ -1108,7 +1106,7 @@ private:
     }
     // the fans and one new vertex per sector
     std::map<Index, Fan> fans;
-    std::map<Index, std::vector<Index>> sector_twin;
+    std::map<Index, std::vector<Index>>& sector_twin = pillow_twins;
     for(const auto& kc : count) {
       Fan& fan = fans[kc.first];
       const int ns = fan_sectors(kc.first, cut, fan);
@@ -1263,27 +1261,39 @@ private:
       add_top({{z, qaz, c, qbz}}, cell, patch[sz]);       // local face 5 (4, 5, 6, 7)
     }
     // the copies start on their sector's side: at the mean centre of its faces, on the surface
-    std::vector<Vec3> sum(P.size(), Vec3{{0, 0, 0}});
-    std::vector<int> n(P.size(), 0);
-    for(const auto& kf : fans) {
-      const auto& F = vertex_top_faces[kf.first];
-      for(std::size_t i = 0; i < F.size(); ++i) {
-        const Index tw = sector_vertex(kf.first, i);
-        Vec3 cc{{0, 0, 0}};
-        for(Index x : m.boundary_faces[top_faces[F[i]]].vertices) cc = add(cc, mul(P[x], 0.25));
-        sum[tw] = add(sum[tw], cc);
-        ++n[tw];
-      }
-    }
     for(const auto& kf : fans) {
       const auto& F = vertex_top_faces[kf.first];
       for(std::size_t i = 0; i < F.size(); ++i) pillow_sector_faces[sector_vertex(kf.first, i)].push_back(F[i]);
     }
-    pillow_twins = sector_twin;
-    for(const auto& kt : sector_twin)
-      for(Index tw : kt.second)
-        if(n[tw] > 0 && !on_other.count(tw)) P[tw] = clamp_planes(tw, vec(d.closest_point(Point_3(sum[tw][0] / n[tw], sum[tw][1] / n[tw], sum[tw][2] / n[tw]))));
+    std::vector<std::pair<Index, Vec3>> start;   // all from the positions before any copy moves
+    for(const auto& ps : pillow_sector_faces)
+      if(!on_other.count(ps.first)) start.push_back({ps.first, sector_centre(ps.first)});
+    for(const auto& st : start) P[st.first] = clamp_planes(st.first, vec(d.closest_point(point(st.second))));
     build_adjacency();
+  }
+
+  // the mean of the centres of the faces of the sector of a pillow's copy `tw`
+  Vec3 sector_centre(Index tw) const
+  {
+    Vec3 g{{0, 0, 0}};
+    const auto& F = pillow_sector_faces.at(tw);
+    for(std::size_t f : F) {
+      Vec3 cc{{0, 0, 0}};
+      for(Index x : m.boundary_faces[top_faces[f]].vertices) cc = add(cc, mul(P[x], 0.25));
+      g = add(g, cc);
+    }
+    const double n = double(F.size());
+    return Vec3{{g[0] / n, g[1] / n, g[2] / n}};
+  }
+
+  static Point_3 point(const Vec3& x) { return Point_3(x[0], x[1], x[2]); }
+
+  // the distance tree of surface region `r` (`region_trees`), built at its first use
+  void build_region_tree(std::size_t r)
+  {
+    if(region_trees[r]) return;
+    region_trees[r] = std::make_unique<Tree>(region_triangles[r].begin(), region_triangles[r].end());
+    region_trees[r]->accelerate_distance_queries();
   }
 
   Vec3 point_at(std::size_t c, const std::vector<double>& arc, double s) const
@@ -1447,7 +1457,7 @@ private:
       const Index t = kt.first;
       if(kt.second.size() != 2 || kind[t] != CURVE || curve_of[t] < 0 || std::size_t(curve_of[t]) >= fc->curves().size()) continue;
       const std::size_t c = std::size_t(curve_of[t]);
-      const auto cp = curve_trees[c]->closest_point_and_primitive(Point_3(P[t][0], P[t][1], P[t][2]));
+      const auto cp = curve_trees[c]->closest_point_and_primitive(point(P[t]));
       const std::size_t i = std::size_t(cp.second - curve_segments[c].begin());
       const auto& cv = fc->curves()[c].vertices;
       auto et = curve_edge_triangles.find(capture_edge_key(cv[i], cv[(i + 1) % cv.size()]));
@@ -1458,16 +1468,15 @@ private:
         const auto& tr = d.triangle(T);
         return mul(add(add(vec(tr[0]), vec(tr[1])), vec(tr[2])), 1.0 / 3.0);
       };
+      const Vec3 e = sub(centroid(et->second[0]), centroid(et->second[1]));
+      // (the mean of the sector's face corners, summed vertex by vertex: it rounds apart from
+      // `sector_centre()`, and the copies' places depend on those bits)
       auto side = [&](Index tw) {
         Vec3 g{{0, 0, 0}};
-        int n = 0;
-        for(std::size_t f : pillow_sector_faces[tw]) {
+        for(std::size_t f : pillow_sector_faces[tw])
           for(Index x : m.boundary_faces[top_faces[f]].vertices) g = add(g, mul(P[x], 0.25));
-          ++n;
-        }
-        return n > 0 ? mul(g, 1.0 / n) : P[t];
+        return mul(g, 1.0 / double(pillow_sector_faces[tw].size()));
       };
-      const Vec3 e = sub(centroid(et->second[0]), centroid(et->second[1]));
       const bool a_first = dot(sub(side(kt.second[0]), side(kt.second[1])), e) >= 0;
       twin_region[kt.second[0]] = a_first ? r1 : r2;
       twin_region[kt.second[1]] = a_first ? r2 : r1;
@@ -1485,10 +1494,7 @@ private:
         const double l = norm(off);
         const int r = twin_region[tw];
         if(r >= 0 && std::size_t(r) < region_triangles.size() && !region_triangles[std::size_t(r)].empty()) {
-          if(!region_trees[std::size_t(r)]) {
-            region_trees[std::size_t(r)] = std::make_unique<Tree>(region_triangles[std::size_t(r)].begin(), region_triangles[std::size_t(r)].end());
-            region_trees[std::size_t(r)]->accelerate_distance_queries();
-          }
+          build_region_tree(std::size_t(r));
           const Vec3 on = closest_on_surface(side(tw), r);
           if(norm(sub(on, P[t])) >= 0.3 * hloc[tw]) { P[tw] = clamp_planes(tw, on); continue; }
         }
@@ -1503,13 +1509,8 @@ private:
       for(std::size_t f : vertex_top_faces[ps.first])
         if(std::find(ps.second.begin(), ps.second.end(), f) == ps.second.end()) face_region[f] = best;
     }
-    for(Index i = 0; i < nf; ++i) {
-      const std::size_t r = std::size_t(face_region[i]);
-      if(!region_trees[r] && !region_triangles[r].empty()) {
-        region_trees[r] = std::make_unique<Tree>(region_triangles[r].begin(), region_triangles[r].end());
-        region_trees[r]->accelerate_distance_queries();
-      }
-    }
+    for(Index i = 0; i < nf; ++i)
+      if(!region_triangles[std::size_t(face_region[i])].empty()) build_region_tree(std::size_t(face_region[i]));
   }
 
   // -----------------------------------------------------------------------------------------------
@@ -2250,9 +2251,9 @@ private:
   std::vector<int> curve_of;
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::unordered_set<std::uint64_t> feature_edges;
-  std::map<Index, std::vector<std::size_t>> pillow_sector_faces;
+  std::map<Index, std::vector<std::size_t>> pillow_sector_faces;   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
   std::map<Index, std::vector<Index>> pillow_twins;   // a pillowed chain vertex -> its copies, one per sector
-  std::unordered_map<std::uint64_t, std::vector<Index>> curve_edge_triangles;   // input curve edge -> its triangles   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
+  std::unordered_map<std::uint64_t, std::vector<Index>> curve_edge_triangles;   // an edge of a followed input curve -> its triangles
   std::vector<std::vector<Triangle_3>> region_triangles;
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
