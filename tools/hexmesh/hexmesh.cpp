@@ -731,6 +731,9 @@ int main(int argc, char** argv)
           for(std::size_t i = 0; i < stats.missed_curves.size() && i < 100; ++i)
             mc.push_back({stats.missed_curves[i][0], stats.missed_curves[i][1], stats.missed_curves[i][2]});
           j["boundary"]["missed_curves_first_100"] = mc;
+          nlohmann::ordered_json cs = nlohmann::ordered_json::object();
+          for(const auto& st : stats.capture_seconds) cs[st.first] = st.second;
+          j["boundary"]["step_seconds"] = cs;
         }
         j["grid"] = {{"initial_cells", {stats.initial_cells[0], stats.initial_cells[1], stats.initial_cells[2]}},
                      {"leaf_cells", leaves}, {"cut_leaves", stats.cut_leaves}, {"balance_splits", stats.balance_splits},

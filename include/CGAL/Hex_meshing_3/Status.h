@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace CGAL {
 namespace Hex_meshing_3 {
@@ -136,6 +137,9 @@ struct Meshing_statistics
   std::vector<std::array<double, 3>> curve_turns;
   /// a point (the middle vertex) of each feature curve no chain was found for
   std::vector<std::array<double, 3>> missed_curves;
+  /// wall seconds of each step of the boundary capture, in order (`"buffer"`, `"twins"`,
+  /// `"features"`, `"regions"`, `"optimise"`, `"repairs"`, `"cleanup"`)
+  std::vector<std::pair<std::string, double>> capture_seconds;
 };
 
 /*!

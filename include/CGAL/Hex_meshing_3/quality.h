@@ -48,19 +48,26 @@ namespace internal {
 // Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
 inline double hex_scaled_jacobian(const Vec3* x)
 {
-  static const int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
+  static constexpr int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
+  // the squared lengths of the 12 edges (01 12 23 30 45 56 67 74 04 15 26 37), and of the three
+  // at each corner (in the order of `nb`)
+  static constexpr int E[12][2] = {{0,1},{1,2},{2,3},{3,0},{4,5},{5,6},{6,7},{7,4},{0,4},{1,5},{2,6},{3,7}};
+  static constexpr int ce[8][3] = {{0,3,8},{1,0,9},{2,1,10},{3,2,11},{7,4,8},{4,5,9},{5,6,10},{6,7,11}};
+  double ll[12];
+  for(int k = 0; k < 12; ++k) { const Vec3 e = sub(x[E[k][1]], x[E[k][0]]); ll[k] = dot(e, e); }
   double sj = std::numeric_limits<double>::max();
-  auto det = [](const Vec3& a, const Vec3& b, const Vec3& c) {
-    const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(c, c));
+  auto det = [](const Vec3& a, const Vec3& b, const Vec3& c, double l) {
+    l = std::sqrt(l);
     if(!(l > 0)) return 0.0;
     return dot(a, cross(b, c)) / l;
   };
   for(int i = 0; i < 8; ++i)
-    sj = (std::min)(sj, det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i])));
+    sj = (std::min)(sj, det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i]),
+                            ll[ce[i][0]] * ll[ce[i][1]] * ll[ce[i][2]]));
   const Vec3 X1 = add(add(sub(x[1], x[0]), sub(x[2], x[3])), add(sub(x[5], x[4]), sub(x[6], x[7])));
   const Vec3 X2 = add(add(sub(x[3], x[0]), sub(x[2], x[1])), add(sub(x[7], x[4]), sub(x[6], x[5])));
   const Vec3 X3 = add(add(sub(x[4], x[0]), sub(x[5], x[1])), add(sub(x[6], x[2]), sub(x[7], x[3])));
-  sj = (std::min)(sj, det(X1, X2, X3));
+  sj = (std::min)(sj, det(X1, X2, X3, dot(X1, X1) * dot(X2, X2) * dot(X3, X3)));
   return (std::max)(-1.0, (std::min)(1.0, sj));
 }
 } // namespace internal
@@ -372,6 +379,46 @@ std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyh
   return w;
 }
 
+namespace internal {
+// OpenFOAM's face non-orthogonality (degrees, internal faces; skipped if `non_orthogonality` is
+// null) and skewness (all faces), from the geometry `g` of the mesh with points `points`
+template <typename PointRange>
+void face_non_orthogonality_and_skewness(const PointRange& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g,
+                                         std::vector<double>* non_orthogonality, std::vector<double>& skewness)
+{
+  const std::size_t ni = pm.neighbour.size();
+  const double ROOTVSMALL = 1.0e-150, VSMALL = 1.0e-300;
+  if(non_orthogonality) non_orthogonality->resize(ni);
+  skewness.resize(pm.faces.size());
+  for(std::size_t f = 0; f < pm.faces.size(); ++f) {
+    const Vec3& S = g.face_areas[f];
+    const Vec3& Cf = g.face_centres[f];
+    const Vec3& Co = g.cell_centres[pm.owner[f]];
+    const Vec3 Cpf = sub(Cf, Co);
+    Vec3 d; double fd0;
+    if(f < ni) {
+      d = sub(g.cell_centres[pm.neighbour[f]], Co);
+      if(non_orthogonality) {
+        const double c = dot(d, S) / (norm(d) * norm(S) + VSMALL);
+        (*non_orthogonality)[f] = std::acos((std::min)(1.0, (std::max)(-1.0, c))) * 180.0 / M_PI;
+      }
+      fd0 = 0.2 * norm(d);
+    } else {
+      const double ms = norm(S);
+      const Vec3 n = ms > VSMALL ? mul(S, 1.0 / ms) : Vec3{{0, 0, 0}};
+      d = mul(n, dot(n, Cpf));
+      fd0 = 0.4 * norm(d);
+    }
+    const Vec3 sv = sub(Cpf, mul(d, dot(S, Cpf) / (dot(S, d) + ROOTVSMALL)));
+    const double msv = norm(sv);
+    const Vec3 svHat = mul(sv, 1.0 / (msv + ROOTVSMALL));
+    double fd = fd0 + ROOTVSMALL;
+    for(auto v : pm.faces[f]) fd = (std::max)(fd, std::abs(dot(svHat, sub(vec(points[v]), Cf))));
+    skewness[f] = msv / fd;
+  }
+}
+} // namespace internal
+
 /*!
  * \ingroup PkgHexMeshing3Quality
  * \brief computes the quality of `mesh`; `pm` is its polyhedral form (`Polyhedral_mesh_3::build()`).
@@ -391,33 +438,8 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
   g.compute(mesh.points, pm);
   q.cell_volume = g.cell_volumes;
   const std::size_t ni = pm.neighbour.size();
-  const double ROOTVSMALL = 1.0e-150, VSMALL = 1.0e-300;
-  q.non_orthogonality.resize(ni);
-  q.skewness.resize(pm.faces.size());
-  for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-    const Vec3& S = g.face_areas[f];
-    const Vec3& Cf = g.face_centres[f];
-    const Vec3& Co = g.cell_centres[pm.owner[f]];
-    const Vec3 Cpf = sub(Cf, Co);
-    Vec3 d; double fd0;
-    if(f < ni) {
-      d = sub(g.cell_centres[pm.neighbour[f]], Co);
-      const double c = dot(d, S) / (norm(d) * norm(S) + VSMALL);
-      q.non_orthogonality[f] = std::acos((std::min)(1.0, (std::max)(-1.0, c))) * 180.0 / M_PI;
-      fd0 = 0.2 * norm(d);
-    } else {
-      const double ms = norm(S);
-      const Vec3 n = ms > VSMALL ? mul(S, 1.0 / ms) : Vec3{{0, 0, 0}};
-      d = mul(n, dot(n, Cpf));
-      fd0 = 0.4 * norm(d);
-    }
-    const Vec3 sv = sub(Cpf, mul(d, dot(S, Cpf) / (dot(S, d) + ROOTVSMALL)));
-    const double msv = norm(sv);
-    const Vec3 svHat = mul(sv, 1.0 / (msv + ROOTVSMALL));
-    double fd = fd0 + ROOTVSMALL;
-    for(auto v : pm.faces[f]) fd = (std::max)(fd, std::abs(dot(svHat, sub(vec(mesh.points[v]), Cf))));
-    q.skewness[f] = msv / fd;
-  }
+  const double ROOTVSMALL = 1.0e-150;
+  face_non_orthogonality_and_skewness(mesh.points, pm, g, &q.non_orthogonality, q.skewness);
   // aspect ratio (primitiveMeshTools::cellClosedness)
   std::vector<Vec3> sumMag(pm.number_of_cells, Vec3{{0, 0, 0}});
   for(std::size_t f = 0; f < pm.faces.size(); ++f) {

@@ -48,6 +48,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -75,17 +76,22 @@ inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
 // face centre) relative to a cube's, so 1 for a cube and <= 0 when a pyramid is inverted.
 inline double hex_pyramid_quality(const Vec3* x)
 {
+  static constexpr int F[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};   // hex_local_faces()
   Vec3 cc{{0, 0, 0}};
   for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
   cc = mul(cc, 0.125);
   double q = std::numeric_limits<double>::max();
-  for(const auto& f : hex_local_faces()) {
+  for(const auto& f : F) {
     const Vec3 fc = mul(add(add(x[f[0]], x[f[1]]), add(x[f[2]], x[f[3]])), 0.25);
     const Vec3 u = sub(cc, fc);
+    const double uu = dot(u, u);
+    Vec3 a[4];
+    double aa[4];
+    for(int i = 0; i < 4; ++i) { a[i] = sub(x[f[i]], fc); aa[i] = dot(a[i], a[i]); }
     for(int i = 0; i < 4; ++i) {
-      const Vec3 a = sub(x[f[i]], fc), b = sub(x[f[(i + 1) % 4]], fc);
-      const double l = std::sqrt(dot(a, a) * dot(b, b) * dot(u, u));
-      const double v = l > 0 ? -dot(cross(a, b), u) / l : 0.0;
+      const int j = (i + 1) & 3;
+      const double l = std::sqrt(aa[i] * aa[j] * uu);
+      const double v = l > 0 ? -dot(cross(a[i], a[j]), u) / l : 0.0;
       q = (std::min)(q, v);
     }
   }
@@ -314,21 +320,33 @@ public:
   bool run(Visitor& visitor)
   {
     for(int a = 0; a < 3; ++a) { box_lo[a] = m.box.min(a); box_hi[a] = m.box.max(a); }
+    auto t0 = std::chrono::steady_clock::now();
+    auto lap = [&](const char* step) {
+      const auto t = std::chrono::steady_clock::now();
+      rep.capture_seconds.emplace_back(step, std::chrono::duration<double>(t - t0).count());
+      t0 = t;
+    };
     P.resize(m.points.size());
     for(std::size_t v = 0; v < P.size(); ++v) P[v] = vec(m.points[v]);
     insert_buffer();
     build_topology();
+    lap("buffer");
     place_twins();
+    lap("twins");
     if(fc) snap_features();
+    lap("features");
     build_regions();
     for(Index v = 0; v < P.size(); ++v)   // after snapping: back onto the surface regions
       if(kind[v] == SURFACE) P[v] = constrain(v, P[v]);
     update_hanging();
+    lap("regions");
     // a cancellation stops the smoothing sweeps only: the steps that make every cell valid run
     optimise(visitor);
+    lap("optimise");
     repair_face_splits();
     repair_split_face_warp();
     reduce_non_orthogonality();
+    lap("repairs");
     assign_patches();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
@@ -338,11 +356,14 @@ public:
     for(int round = 0; round < 8; ++round) {
       Polyhedral_mesh_3 pm;
       pm.build(m);
-      const Mesh_quality q = compute_quality(m, pm);
+      OpenFOAM_geometry g;
+      g.compute(m.points, pm);
+      std::vector<double> skewness;
+      face_non_orthogonality_and_skewness(m.points, pm, g, nullptr, skewness);
       const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
       std::vector<Index> extra;
       for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-        if(!(q.skewness[f] > opt.max_skewness)) continue;
+        if(!(skewness[f] > opt.max_skewness)) continue;
         ++rep.skewed_faces;
         if(pm.owner[f] >= first) extra.push_back(pm.owner[f]);
         if(f < pm.neighbour.size() && pm.neighbour[f] >= first) extra.push_back(pm.neighbour[f]);
@@ -351,6 +372,7 @@ public:
       remove_invalid_buffer_cells(extra);
     }
     if(rep.removed_buffer_cells > 0) drop_unused_vertices();
+    lap("cleanup");
     return !cancelled;
   }
 
@@ -507,6 +529,26 @@ private:
       return vec(region_trees[std::size_t(region)]->closest_point(p));
     return vec(d.closest_point(p));
   }
+  // the same for a surface vertex, the search starting from the last point found for it (a point
+  // of its region: the search only prunes with it)
+  Vec3 closest_on_surface_from(Index v, const Vec3& x) const
+  {
+    const int region = region_of_vertex(v);
+    if(!(region >= 0 && std::size_t(region) < region_trees.size() && region_trees[std::size_t(region)]))
+      return closest_on_surface(x, region);
+    if(hint_region.size() != P.size()) { hint_region.assign(P.size(), -1); hint.resize(P.size()); }
+    const Point_3 p(x[0], x[1], x[2]);
+    const auto& tree = *region_trees[std::size_t(region)];
+    const Point_3 c = hint_region[v] == region ? tree.closest_point(p, hint[v]) : tree.closest_point(p);
+    hint[v] = c;
+    hint_region[v] = region;
+    return vec(c);
+  }
+  bool on_hint(Index v) const
+  {
+    return v < hint_region.size() && hint_region[v] == region_of_vertex(v) && hint_region[v] >= 0 &&
+           clamp_planes(v, vec(hint[v])) == P[v];
+  }
   Vec3 closest_on_curve(const Vec3& x, int curve) const
   {
     return vec(curve_trees[std::size_t(curve)]->closest_point(Point_3(x[0], x[1], x[2])));
@@ -514,7 +556,7 @@ private:
   Vec3 constrain(Index v, const Vec3& x) const
   {
     switch(kind[v]) {
-    case SURFACE: return clamp_planes(v, closest_on_surface(clamp_planes(v, x), region_of_vertex(v)));
+    case SURFACE: return clamp_planes(v, closest_on_surface_from(v, clamp_planes(v, x)));
     case CURVE: return clamp_planes(v, closest_on_curve(x, curve_of[v]));
     case CORNER: case HANGING: return P[v];
     default: return clamp_planes(v, x);
@@ -1588,7 +1630,7 @@ private:
     const Vec3 x0 = P[v];
     q_old.resize(cells.size());
     double f0 = 1, m0 = 0;
-    for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = cell_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); m0 += q_old[i]; }
+    for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = current_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); m0 += q_old[i]; }
     // in the repair, the scaled Jacobian is guarded on its own too (a cell whose split is bad has
     // a low quality, which must not let its scaled Jacobian fall that low)
     base_old.resize(cells.size());
@@ -1629,14 +1671,20 @@ private:
       trial(ideal);
       trial(mul(add(ideal, x0), 0.5));
     }
-    if(kind[v] == SURFACE || kind[v] == CURVE) trial(x0);   // back onto the surface/curve
+    // back onto the surface/curve (a surface vertex at the last point found for it is on it)
+    if(kind[v] == CURVE || (kind[v] == SURFACE && !on_hint(v))) trial(x0);
     // numerical gradient of the minimum quality (for vertices of cells below the target)
+    // (over the cells near the minimum: a step of eps cannot bring the others down to it)
     const double eps = 1e-4 * h;
     Vec3 g{{0, 0, 0}};
-    for(int a = 0; a < 3 && f0 < opt.target_quality; ++a) {
-      Vec3 y = x0; y[a] += eps;
-      move(v, y);
-      g[a] = (quality_of(cells) - f0) / eps;
+    if(f0 < opt.target_quality) {
+      near_min.clear();
+      for(std::size_t i = 0; i < cells.size(); ++i) if(q_old[i] <= f0 + 0.1) near_min.push_back(cells[i]);
+      for(int a = 0; a < 3; ++a) {
+        Vec3 y = x0; y[a] += eps;
+        move(v, y);
+        g[a] = (quality_of(near_min) - f0) / eps;
+      }
     }
     const double gn = norm(g);
     if(gn > 0 && f0 < opt.target_quality)
@@ -1667,7 +1715,7 @@ private:
       return e;
     };
     q_old.resize(cells.size());
-    for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
+    for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = current_quality(cells[i]);
     // the hanging nodes that follow the vertex move by a fixed fraction of its displacement
     dep_weights.clear();
     if(!deps[v].empty()) {
@@ -1715,6 +1763,17 @@ private:
     // so a sweep costs what the boundary region costs, not the whole mesh.
     std::vector<Index> cells, work, low, touched;
     std::vector<char> in_work(P.size(), 0), mark(m.hexahedra.size(), 0);
+    moved_at.assign(P.size(), 0);
+    for(auto& f : failed_at) f.assign(P.size(), 0);
+    quality_at.assign(m.hexahedra.size(), 0);
+    quality_cache.assign(m.hexahedra.size(), 0.0);
+    use_quality_cache = true;
+    struct Cache_off { bool& on; ~Cache_off() { on = false; } } cache_off{use_quality_cache};
+    clock = 1;
+    epoch = 1;
+    // what `improve()` and `relax()` find depends on the positions they read and on the vertex
+    // kinds (constraints): a change of kinds, or a move outside the sweeps, starts a new epoch
+    auto new_epoch = [&]() { epoch = ++clock; };
     for(Index c = 0; c < m.hexahedra.size(); ++c) if(cell_quality(c) < opt.target_quality) low.push_back(c);
     auto add_vertex = [&](Index v) { add_work_vertex(v, work, in_work); };
     // improves the vertices in `work`; returns the number moved and refreshes `low`
@@ -1722,9 +1781,15 @@ private:
       std::sort(work.begin(), work.end());
       std::size_t moved = 0;
       touched.clear();
+      std::vector<std::uint64_t>& failed = failed_at[smooth_energy ? 1 : 0];
       for(Index v : work) {
         in_work[v] = 0;
-        if(!(smooth_energy ? relax(v, cells) : improve(v, cells))) continue;
+        // a vertex that found no move, none of whose inputs moved since: it finds none again
+        if(failed[v] >= epoch && last_input_move(v) <= failed[v]) continue;
+        if(!(smooth_energy ? relax(v, cells) : improve(v, cells))) { failed[v] = clock; continue; }
+        ++clock;
+        moved_at[v] = clock;
+        for(Index h : deps[v]) moved_at[h] = clock;
         ++moved;
         for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
       }
@@ -1732,7 +1797,7 @@ private:
       for(Index c : low) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
       low.clear();
       std::sort(touched.begin(), touched.end());
-      for(Index c : touched) { mark[c] = 0; if(cell_quality(c) < opt.target_quality) low.push_back(c); }
+      for(Index c : touched) { mark[c] = 0; if(current_quality(c) < opt.target_quality) low.push_back(c); }
       return moved;
     };
     // Sweeps alternate between the shape energy (smooth: every cell of a vertex counts, so
@@ -1740,6 +1805,7 @@ private:
     // cells' minimum (what the energy averages away). Either alone stalls much earlier. The main
     // sweeps also set every inner buffer vertex under its twin (the first three) and report progress.
     auto smooth = [&](int passes, bool main_sweeps) {
+      new_epoch();
       for(int pass = 0, idle = 0; pass < passes && !cancelled; ++pass) {
         for(Index c : low) for(Index v : m.hexahedra[c]) add_vertex(v);
         if(main_sweeps) {
@@ -1756,6 +1822,7 @@ private:
     };
     smooth(opt.passes, true);
     auto untangle = [&]() {
+      new_epoch();
       for(int pass = 0; pass < opt.passes; ++pass) {
         for(Index c : low) if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) add_vertex(v);
         if(work.empty()) break;
@@ -2233,6 +2300,51 @@ private:
   std::vector<Vec3> P;
   std::vector<double> q_old;
   std::vector<std::pair<Index, double>> dep_weights;
+  // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
+  // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
+  std::vector<std::uint64_t> moved_at;
+  std::array<std::vector<std::uint64_t>, 2> failed_at;
+  std::uint64_t clock = 1, epoch = 1;
+  // optimise(): each cell's quality and when it was computed (valid in the epoch, if no corner
+  // moved since)
+  std::vector<double> quality_cache;
+  std::vector<std::uint64_t> quality_at;
+  bool use_quality_cache = false;
+  std::vector<Index> near_min;   // improve(): the cells near the minimum
+  mutable std::vector<Point_3> hint;     // closest_on_surface_from(): the last point found per vertex
+  mutable std::vector<int> hint_region;  // and in which region (-1: none yet)
+
+  // the quality of cell c at the current positions (the cache in optimise())
+  double current_quality(Index c)
+  {
+    if(!use_quality_cache) return cell_quality(c);
+    if(quality_at[c] >= epoch) {
+      std::uint64_t t = 0;
+      for(Index w : m.hexahedra[c]) t = (std::max)(t, moved_at[w]);
+      if(t <= quality_at[c]) return quality_cache[c];
+    }
+    quality_at[c] = clock;
+    return quality_cache[c] = cell_quality(c);
+  }
+
+  // the last move of a vertex `improve()` or `relax()` reads at `v`: the corners of its cells and
+  // of its hanging nodes' cells, its smoothing neighbours, and the top faces around its twin
+  std::uint64_t last_input_move(Index v) const
+  {
+    std::uint64_t t = moved_at[v];
+    auto cells_of = [&](Index u) {
+      for(Index k = cstart[u]; k < cstart[u + 1]; ++k)
+        for(Index w : m.hexahedra[cinc[k]]) t = (std::max)(t, moved_at[w]);
+    };
+    cells_of(v);
+    for(Index h : deps[v]) cells_of(h);
+    for(const auto* L : {&nbrs, &snbrs, &cnbrs})
+      if(v < L->size()) for(Index w : (*L)[v]) t = (std::max)(t, moved_at[w]);
+    if(v < twin.size() && twin[v] != NONE)
+      for(std::size_t f : vertex_top_faces[twin[v]])
+        for(Index w : m.boundary_faces[top_faces[f]].vertices) t = (std::max)(t, moved_at[w]);
+    return t;
+  }
   std::vector<std::vector<Vec3>> fnormals;   // unit staircase face normals at each twin
   std::vector<Index> twin, inner, inner_of;
   std::vector<std::size_t> top_faces;
