@@ -77,6 +77,7 @@ struct Progress
   std::string phase;
   std::vector<std::pair<std::string, double>> seconds;
   std::vector<std::pair<std::string, std::size_t>> work;   // cells each phase starts with
+  std::vector<std::pair<std::string, double>> peaks;       // peak memory (MiB) at the end of each phase
   int last_percent = -1;
 
   void on_phase_begin(const char* name, std::size_t cells)
@@ -92,8 +93,9 @@ struct Progress
   {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - phase_t0).count();
     seconds.push_back({name, s});
+    peaks.push_back({name, peak_memory_mib()});
     if(!quiet && tty) std::cerr << "\r\033[K" << std::flush;
-    if(!quiet) std::cerr << "hexmesh: " << name << " done in " << s << " s\n";
+    if(!quiet) std::cerr << "hexmesh: " << name << " done in " << s << " s (peak memory so far " << peaks.back().second << " MiB)\n";
   }
   bool go_further(double f)
   {
@@ -704,6 +706,11 @@ int main(int argc, char** argv)
       sec["quality"] = t_quality; sec["write"] = t_write; sec["total"] = total;
       j["seconds"] = sec;
       j["peak_memory_mib"] = peak_memory_mib();
+      {
+        nlohmann::ordered_json pk = nlohmann::ordered_json::object();
+        for(const auto& pp : progress.peaks) pk[pp.first] = pp.second;
+        j["peak_memory_mib_by_phase"] = pk;
+      }
       {
         // grid speed: leaf cells of the balanced grid per second of refine + balance + classify
         std::size_t leaves = 0;

@@ -109,20 +109,22 @@ struct Polyhedral_mesh_3
 
     struct Item { Key key; Index cell; Index poly; };
     std::vector<Item> items;
-    std::vector<std::vector<Index>> polys;
+    // the polygons, one after the other (`poly_start[i]`: where polygon i starts); a vector per
+    // polygon would cost three times the memory on large meshes
+    std::vector<Index> poly_vertices, poly_start{0};
     items.reserve(6 * mesh.hexahedra.size());
-    polys.reserve(6 * mesh.hexahedra.size());
+    poly_start.reserve(6 * mesh.hexahedra.size() + 1);
+    poly_vertices.reserve(24 * mesh.hexahedra.size() + 24 * mesh.hanging_nodes.size());
+    auto poly_size = [&](Index i) { return poly_start[i + 1] - poly_start[i]; };
     // a quad of cell c with, after each corner, the hanging midpoint of the edge it starts (if any)
     auto add_polygon = [&](const std::array<Index, 4>& q, Index c) {
-      std::vector<Index> p;
-      p.reserve(8);
       for(int i = 0; i < 4; ++i) {
-        p.push_back(q[i]);
+        poly_vertices.push_back(q[i]);
         Index m;
-        if(mid_of(q[i], q[(i + 1) % 4], m)) p.push_back(m);
+        if(mid_of(q[i], q[(i + 1) % 4], m)) poly_vertices.push_back(m);
       }
-      items.push_back({sorted(q), c, Index(polys.size())});
-      polys.push_back(std::move(p));
+      items.push_back({sorted(q), c, Index(poly_start.size() - 1)});
+      poly_start.push_back(Index(poly_vertices.size()));
     };
     for(Index c = 0; c < mesh.hexahedra.size(); ++c) {
       const auto& h = mesh.hexahedra[c];
@@ -137,8 +139,9 @@ struct Polyhedral_mesh_3
           const std::array<std::array<Index, 4>, 4> sub = {{{{q[0], m[0], ctr, m[3]}}, {{m[0], q[1], m[1], ctr}},
                                                           {{ctr, m[1], q[2], m[2]}}, {{m[3], ctr, m[2], q[3]}}}};
           for(const auto& s : sub) {
-            items.push_back({sorted(s), c, Index(polys.size())});
-            polys.emplace_back(s.begin(), s.end());
+            items.push_back({sorted(s), c, Index(poly_start.size() - 1)});
+            poly_vertices.insert(poly_vertices.end(), s.begin(), s.end());
+            poly_start.push_back(Index(poly_vertices.size()));
           }
           continue;
         }
@@ -159,6 +162,7 @@ struct Polyhedral_mesh_3
         if(!split) add_polygon({{q[0], q[1], q[2], q[3]}}, c);
       }
     }
+    std::vector<std::pair<Key, Index>>().swap(cell_faces);
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
       return a.key != b.key ? a.key < b.key : a.cell < b.cell; });
 
@@ -174,9 +178,9 @@ struct Polyhedral_mesh_3
         const Item& b = items[i + 1];
         // the owner's polygon, unless the neighbour's lists more vertices (then reversed)
         Index poly = a.poly;
-        if(polys[b.poly].size() > polys[a.poly].size()) {
+        if(poly_size(b.poly) > poly_size(a.poly)) {
           poly = b.poly;
-          std::reverse(polys[poly].begin() + 1, polys[poly].end());
+          std::reverse(poly_vertices.begin() + poly_start[poly] + 1, poly_vertices.begin() + poly_start[poly + 1]);
         }
         internal.push_back({a.cell, b.cell, poly});
       } else if(j - i == 1) {
@@ -196,9 +200,15 @@ struct Polyhedral_mesh_3
     std::stable_sort(boundary.begin(), boundary.end(), [](const Boundary& a, const Boundary& b) {
       return a.patch != b.patch ? a.patch < b.patch : a.own < b.own; });
 
+    std::vector<Item>().swap(items);
+    auto polygon = [&](Index i) {
+      return std::vector<Index>(poly_vertices.begin() + poly_start[i], poly_vertices.begin() + poly_start[i + 1]);
+    };
     faces.reserve(internal.size() + boundary.size());
+    owner.reserve(internal.size() + boundary.size());
+    neighbour.reserve(internal.size());
     for(const Internal& f : internal) {
-      faces.push_back(std::move(polys[f.poly])); owner.push_back(f.own); neighbour.push_back(f.nei);
+      faces.push_back(polygon(f.poly)); owner.push_back(f.own); neighbour.push_back(f.nei);
     }
     patches.resize(mesh.patch_names.size());
     for(std::size_t p = 0; p < patches.size(); ++p) patches[p].name = mesh.patch_names[p];
@@ -206,7 +216,7 @@ struct Polyhedral_mesh_3
     for(std::size_t p = 0; p < patches.size(); ++p) {
       patches[p].start = faces.size();
       while(k < boundary.size() && boundary[k].patch == int(p)) {
-        faces.push_back(std::move(polys[boundary[k].poly])); owner.push_back(boundary[k].own); ++k;
+        faces.push_back(polygon(boundary[k].poly)); owner.push_back(boundary[k].own); ++k;
       }
       patches[p].size = faces.size() - patches[p].start;
     }
