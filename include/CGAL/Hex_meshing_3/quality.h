@@ -49,12 +49,15 @@ namespace internal {
 inline double hex_scaled_jacobian(const Vec3* x)
 {
   static constexpr int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
-  // the squared lengths of the 12 edges (01 12 23 30 45 56 67 74 04 15 26 37), and of the three
-  // at each corner (in the order of `nb`)
-  static constexpr int E[12][2] = {{0,1},{1,2},{2,3},{3,0},{4,5},{5,6},{6,7},{7,4},{0,4},{1,5},{2,6},{3,7}};
-  static constexpr int ce[8][3] = {{0,3,8},{1,0,9},{2,1,10},{3,2,11},{7,4,8},{4,5,9},{5,6,10},{6,7,11}};
+  // the squared lengths of the 12 edges (`hex_local_edges()`), and which three meet at each corner
+  // (in the order of `nb`)
+  static constexpr int ce[8][3] = {{0,4,8},{5,0,9},{1,5,10},{4,1,11},{6,2,8},{2,7,9},{7,3,10},{3,6,11}};
   double ll[12];
-  for(int k = 0; k < 12; ++k) { const Vec3 e = sub(x[E[k][1]], x[E[k][0]]); ll[k] = dot(e, e); }
+  for(int k = 0; k < 12; ++k) {
+    const auto& e = hex_local_edges()[std::size_t(k)];
+    const Vec3 d = sub(x[e[1]], x[e[0]]);
+    ll[k] = dot(d, d);
+  }
   double sj = std::numeric_limits<double>::max();
   auto det = [](const Vec3& a, const Vec3& b, const Vec3& c, double l) {
     l = std::sqrt(l);

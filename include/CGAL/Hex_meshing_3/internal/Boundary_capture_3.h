@@ -76,12 +76,11 @@ inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
 // face centre) relative to a cube's, so 1 for a cube and <= 0 when a pyramid is inverted.
 inline double hex_pyramid_quality(const Vec3* x)
 {
-  static constexpr int F[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};   // hex_local_faces()
   Vec3 cc{{0, 0, 0}};
   for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
   cc = mul(cc, 0.125);
   double q = std::numeric_limits<double>::max();
-  for(const auto& f : F) {
+  for(const auto& f : hex_local_faces()) {
     const Vec3 fc = mul(add(add(x[f[0]], x[f[1]]), add(x[f[2]], x[f[3]])), 0.25);
     const Vec3 u = sub(cc, fc);
     const double uu = dot(u, u);
