@@ -150,6 +150,82 @@ NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold",
 SAME_TOPOLOGY = {"anchor", "cube", "eight", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
 
 
+# ---- OpenFOAM polyMesh, read back independently -----------------------------------------------
+
+def foam_list(path):
+    """the inside of an OpenFOAM ASCII list file, and its declared length"""
+    text = open(path).read()
+    body = text[text.index("}", text.index("FoamFile")) + 1:]
+    m = re.search(r"(\d+)\s*\(", body)
+    return int(m.group(1)), body[m.end():body.rindex(")")]
+
+
+def read_poly(case):
+    """points, faces, owner, neighbour and patches {name: (start, n)} of an OpenFOAM ASCII polyMesh"""
+    import numpy as np
+    poly = os.path.join(case, "constant", "polyMesh")
+    _, s = foam_list(os.path.join(poly, "points"))
+    pts = np.array([[float(x) for x in t.split()] for t in re.findall(r"\(([^()]*)\)", s)])
+    _, s = foam_list(os.path.join(poly, "faces"))
+    faces = [[int(x) for x in t.split()] for t in re.findall(r"\d+\(([^()]*)\)", s)]
+    owner = [int(x) for x in foam_list(os.path.join(poly, "owner"))[1].split()]
+    nei = [int(x) for x in foam_list(os.path.join(poly, "neighbour"))[1].split()]
+    b = open(os.path.join(poly, "boundary")).read()
+    patches = {m.group(1): (int(m.group(3)), int(m.group(2))) for m in
+               re.finditer(r"(\S+)\s*\{[^}]*?nFaces\s+(\d+);\s*startFace\s+(\d+);", b)}
+    return pts, faces, owner, nei, patches
+
+
+def cell_centroids(pts, faces, owner, nei):
+    """volume centroids of the polyhedral cells (faces fanned from their centre, tetrahedra from a
+    point of the cell): inside any valid cell, whatever its hanging points"""
+    import numpy as np
+    n = max(max(owner), max(nei) if nei else 0) + 1
+    ref = np.zeros((n, 3))
+    cnt = np.zeros(n)
+    for lst in (owner, nei):
+        for f, c in enumerate(lst):
+            ref[c] += pts[faces[f][0]]
+            cnt[c] += 1
+    ref /= cnt[:, None]
+    vol = np.zeros(n)
+    mom = np.zeros((n, 3))
+
+    def add(c, P):
+        fc = P.mean(axis=0)
+        for i in range(len(P)):
+            a, b = P[i], P[(i + 1) % len(P)]
+            v = np.dot(np.cross(a - ref[c], b - ref[c]), fc - ref[c]) / 6
+            vol[c] += v
+            mom[c] += v * (ref[c] + a + b + fc) / 4
+    for f, c in enumerate(owner):
+        add(c, pts[faces[f]])
+        if f < len(nei):
+            add(nei[f], pts[faces[f]][::-1])
+    return mom / vol[:, None]
+
+
+def patch_sides(case, side):
+    """per patch: (faces, area, min and max of side(face centre, owner cell centroid) over the faces
+    where it is not None, how many those are)"""
+    import numpy as np
+    pts, faces, owner, nei, patches = read_poly(case)
+    g = cell_centroids(pts, faces, owner, nei)
+    res = {}
+    for name, (start, n) in patches.items():
+        area, vals = 0.0, []
+        for f in range(start, start + n):
+            P = pts[faces[f]]
+            c = P.mean(axis=0)
+            a = sum(np.cross(P[i] - c, P[(i + 1) % len(P)] - c) for i in range(len(P)))
+            area += 0.5 * np.linalg.norm(a)
+            v = side(c, g[owner[f]])
+            if v is not None:
+                vals.append(v)
+        res[name] = (n, area, min(vals, default=0.0), max(vals, default=0.0), len(vals))
+    return res
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--hexmesh", required=True)
@@ -466,6 +542,60 @@ def main():
     check(names[6:] == ["xmin_2", "part", "part_2"], f"unique patch names: group 'xmin' and two files part.off -> {names[6:]}")
     r = run([args.hexmesh, os.path.join(D, "cube.off"), "-o", os.path.join(R, "x" * 300 + ".vtu")])
     check(r.returncode in (1, 3) and r.stderr.startswith("hexmesh: "), f"an impossible output name: exit {r.returncode}, no crash")
+
+    # 8a. sheets: two sides, two patches (OpenFOAM baffles), oriented consistently
+    print("[sheets: each side its own patch]")
+    ang = math.radians(20)
+    su, sv = np.array([math.cos(ang), 0, math.sin(ang)]), np.array([0, 1, 0.05])   # an oblique plane
+    so = np.array([0, 0, 0.5])
+    sn = np.cross(su, sv)
+    plate_area = 1.44 * np.linalg.norm(sn)
+    sn /= np.linalg.norm(sn)
+    nq = 8
+    sverts = [tuple(so + (-0.6 + 1.2 * i / nq) * su + (-0.6 + 1.2 * j / nq) * sv) for i in range(nq + 1) for j in range(nq + 1)]
+    stris = []
+    for i in range(nq):
+        for j in range(nq):
+            p0, q0 = i * (nq + 1) + j, (i + 1) * (nq + 1) + j
+            stris += [(p0, q0, q0 + 1), (p0, q0 + 1, p0 + 1)]   # normal su x sv
+    rev = lambda t: (t[0], t[2], t[1])
+    # (a) as the motorBike has them: the faces in one part, their reversed copies in a '-shadow' part;
+    # (b) both copies in one part, the first copy of every other pair the reversed one
+    write_obj(os.path.join(W, "plate.obj"), sverts, [("plate", stris), ("plate-shadow", [rev(t) for t in stris])])
+    mixed = []
+    for k, t in enumerate(stris):
+        mixed += [t, rev(t)] if k % 2 == 0 else [rev(t), t]
+    write_obj(os.path.join(W, "plate_mixed.obj"), sverts, [("plate", mixed)])
+
+    def plate_side(c, g):   # faces over the plate, away from its rim: which side is the cell on?
+        d = c - so
+        if abs(np.dot(d, su)) > 0.6 - 0.125 or abs(np.dot(d, sv)) / np.dot(sv, sv) > 0.6 - 0.125:
+            return None
+        return float(np.dot(g - so, sn))
+    for stem, back, flipped, extra in (("plate", "plate-shadow", 0, []), ("plate_mixed", "plate_back", 64, []),
+                                       ("plate_mixed", "plate_back", 64, ["--staircase"])):
+        label = stem + (" (staircase)" if extra else "")
+        case = os.path.join(W, stem + ("_st" if extra else "") + "_case")
+        rep = os.path.join(W, stem + ("_st" if extra else "") + ".json")
+        hexmesh(ctx, [os.path.join(W, stem + ".obj")], [case],
+                ["-q", "--box", "-1,-1,0,1,1,1", "--size", "0.25", "--surface-size", "0.0625", "--region", "seed:0.9,0.9,0.9"] + extra,
+                rep, body_fitted=True)
+        j = json.load(open(rep))
+        r = j["repair"]
+        check(r["sheet_triangles"] == 128 and r["sheet_reoriented"] == flipped and r["sheet_back_parts"] == (back == "plate_back"),
+              f"{label}: 128 sheet faces, {flipped} flipped to the sheet's orientation, back part {back} ({r})")
+        sides = patch_sides(case, plate_side)
+        front, behind = sides.get("plate"), sides.get(back)
+        check(front is not None and behind is not None and front[4] > 100 and behind[4] > 100 and front[2] > 0 and behind[3] < 0,
+              f"{label}: every face over the plate has its cell on its patch's side: 'plate' above "
+              f"({front[4] if front else 0} faces, cell centroids {front[2] if front else 0:.4f}..{front[3] if front else 0:.4f} "
+              f"from the plane), '{back}' below ({behind[4] if behind else 0} faces, {behind[2] if behind else 0:.4f}.."
+              f"{behind[3] if behind else 0:.4f})")
+        check(front is not None and behind is not None and min(front[1], behind[1]) >= 0.95 * plate_area,
+              f"{label}: each side covers the plate (areas {front[1] if front else 0:.3f} and {behind[1] if behind else 0:.3f}, "
+              f"plate {plate_area:.3f})")
+        rc = run(["checkMesh", "-case", case, "-allTopology"], env=dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam"))
+        check(rc.returncode == 0 and "Mesh OK" in rc.stdout, f"{label}: checkMesh -allTopology: Mesh OK")
 
     # 8b. features: detected, reported, refined along; user lines
     print("[features]")

@@ -605,10 +605,21 @@ void test_dirty_input()
                                               .leaks(std::back_inserter(leaks)));
     assert(st == HM::Status::SUCCESS && leaks.empty());
     check_mesh(mesh, "air around a box and a sheet");
-    std::size_t sheet_faces = 0;
-    for(const auto& f : mesh.boundary_faces) if(mesh.patch_names[std::size_t(f.patch)] == "sheet") ++sheet_faces;
-    assert(sheet_faces > 0);   // the sheet bounds the air on both sides
-    std::cout << "  sheet: kept two-sided, bounds " << sheet_faces << " boundary faces, winding number 0 beside it\n";
+    // both copies in part "sheet": its back side (below, against the first copy's normal +z) is
+    // the added part "sheet_back"; each face's cell lies on its patch's side of the plane z = 0.5
+    assert(m.sheet_back_parts == 1 && m.sheet_reoriented == 0);
+    std::size_t front = 0, back = 0;
+    for(const auto& f : mesh.boundary_faces) {
+      const std::string& name = mesh.patch_names[std::size_t(f.patch)];
+      if(name != "sheet" && name != "sheet_back") continue;
+      double z = 0;
+      for(auto v : mesh.hexahedra[f.cell]) z += CGAL::to_double(mesh.points[v].z()) / 8;
+      assert(z != 0.5 && (name == "sheet") == (z > 0.5));
+      ++(name == "sheet" ? front : back);
+    }
+    assert(front > 0 && back > 0);   // the sheet bounds the air on both sides, each side a patch
+    std::cout << "  sheet: kept two-sided, bounds " << front << " + " << back
+              << " boundary faces (front, back), winding number 0 beside it\n";
   }
   // overlapping parts: the inner faces are left out, the union is meshed as one
   {

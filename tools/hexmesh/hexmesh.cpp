@@ -370,6 +370,8 @@ int main(int argc, char** argv)
     note(sum.duplicate_triangles, "duplicate triangles removed");
     note(sum.reversed_duplicates, "reversed duplicate triangles removed");
     note(sum.sheet_triangles, "triangles kept as two-sided zero-thickness sheets");
+    note(sum.sheet_reoriented, "sheet triangles flipped so that each sheet's two sides are consistent");
+    note(sum.sheet_back_parts, "parts added for the back side of sheets (NAME_back)");
     note(sum.reoriented_triangles, "triangles reoriented");
     note(sum.internal_triangles, "triangles wholly or partly inside the volume (overlapping parts) left out of the boundary");
     note(sum.split_triangles, "pieces of the partly inside ones kept");
@@ -627,7 +629,8 @@ int main(int argc, char** argv)
                             {"self_intersecting", sum.self_intersecting}, {"exact_inside_test", sum.exact_inside_test}};
       j["repair"] = {{"merged_points", sum.merged_points}, {"degenerate_triangles", sum.degenerate_triangles},
                      {"duplicate_triangles", sum.duplicate_triangles}, {"reversed_duplicates", sum.reversed_duplicates},
-                     {"sheet_triangles", sum.sheet_triangles}, {"reoriented_triangles", sum.reoriented_triangles},
+                     {"sheet_triangles", sum.sheet_triangles}, {"sheet_reoriented", sum.sheet_reoriented},
+                     {"sheet_back_parts", sum.sheet_back_parts}, {"reoriented_triangles", sum.reoriented_triangles},
                      {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles}};
       j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
                        {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},

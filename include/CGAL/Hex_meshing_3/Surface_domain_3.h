@@ -74,6 +74,8 @@ public:
     std::size_t duplicate_triangles = 0;    ///< removed: same corners, same orientation as a kept face
     std::size_t reversed_duplicates = 0;    ///< removed: same corners, opposite orientation to a kept face
     std::size_t sheet_triangles = 0;        ///< kept faces of zero-thickness sheets (a face and its reversed copy), two-sided
+    std::size_t sheet_reoriented = 0;       ///< sheet faces flipped (with their two sides' parts) so that each sheet's sides are consistent
+    std::size_t sheet_back_parts = 0;       ///< parts added for the back side of sheets whose two copies were in one part (`NAME_back`)
     std::size_t reoriented_triangles = 0;   ///< flipped to agree with their neighbours or to face outward
     std::size_t internal_triangles = 0;     ///< left out of the boundary, wholly or partly: inside the volume on both sides (overlapping parts)
     std::size_t split_triangles = 0;        ///< pieces kept of the partly inside triangles (split at edge midpoints)
@@ -131,7 +133,30 @@ public:
   std::size_t number_of_triangles() const { return m_triangles.size(); }
   const Triangle_3& triangle(std::size_t i) const { return m_triangles[i]; }
   const Bbox_3& triangle_bbox(std::size_t i) const { return m_tri_bboxes[i]; }
+  /// the part of triangle `i` (of a sheet: the part of its front side, where its normal points)
   int patch(std::size_t i) const { return m_patch[i]; }
+  /// the part of the back side of triangle `i`: of a sheet, the part its reversed copy had (or the
+  /// added part `NAME_back` when both copies were in part `NAME`); of any other triangle, `patch(i)`
+  int back_patch(std::size_t i) const { return m_back_patch[i]; }
+  /*!
+   * the part of the side of triangle `i` that faces `p`: `patch(i)`, or for a sheet whose back side
+   * faces `p` (`p` strictly below the triangle's oriented plane, exact test), `back_patch(i)`.
+   * A mesh face bounding the air on one side of a sheet gets this part, so the two sides of a sheet
+   * are two patches (OpenFOAM's baffles).
+   */
+  int patch_facing(std::size_t i, const Point_3& p) const
+  {
+    if(!m_two_sided[i]) return m_patch[i];
+    const Triangle_indices& t = m_indices[i];
+    return CGAL::orientation(m_points[t[0]], m_points[t[1]], m_points[t[2]], p) == CGAL::NEGATIVE ? m_back_patch[i] : m_patch[i];
+  }
+  /// are triangles `i` and `j` in the same part? (two sheet faces oriented opposite ways, across a
+  /// non-manifold edge, are when each one's front part is the other's back part)
+  bool same_part(std::size_t i, std::size_t j) const
+  {
+    if(m_patch[i] == m_patch[j]) return true;
+    return m_two_sided[i] && m_two_sided[j] && m_patch[i] == m_back_patch[j] && m_back_patch[i] == m_patch[j];
+  }
   const std::vector<std::string>& patch_names() const { return m_patch_names; }
   const std::vector<Point_3>& points() const { return m_points; }
   const std::vector<Triangle_indices>& triangle_indices() const { return m_indices; }
@@ -474,7 +499,7 @@ private:
     };
     std::map<V, std::uint32_t> point_index;   // corners of the pieces
     std::vector<Triangle_indices> out_idx;
-    std::vector<int> out_patch;
+    std::vector<int> out_patch, out_back;
     std::vector<bool> out_sided;
     std::vector<char> changed(n, 0);
     std::size_t left_out = 0;
@@ -490,7 +515,7 @@ private:
           if(ins.second) m_points.push_back(Point_3((*v[i])[0], (*v[i])[1], (*v[i])[2]));
           t[std::size_t(i)] = ins.first->second;
         }
-        out_idx.push_back(t); out_patch.push_back(m_patch[f]); out_sided.push_back(m_two_sided[f]);
+        out_idx.push_back(t); out_patch.push_back(m_patch[f]); out_back.push_back(m_back_patch[f]); out_sided.push_back(m_two_sided[f]);
         return;
       }
       auto mid = [](const V& p, const V& q) { return V{{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}}; };
@@ -529,18 +554,18 @@ private:
     for(std::size_t i = 0; i < n; ++i) {
       if(changed[i]) continue;
       m_indices[j] = m_indices[i]; m_triangles[j] = m_triangles[i]; m_tri_bboxes[j] = m_tri_bboxes[i];
-      m_patch[j] = m_patch[i]; m_two_sided[j] = m_two_sided[i];
+      m_patch[j] = m_patch[i]; m_back_patch[j] = m_back_patch[i]; m_two_sided[j] = m_two_sided[i];
       ++j;
     }
     m_summary.internal_triangles = left_out;
     m_summary.split_triangles = out_idx.size();
-    m_indices.resize(j); m_triangles.resize(j); m_tri_bboxes.resize(j); m_patch.resize(j); m_two_sided.resize(j);
+    m_indices.resize(j); m_triangles.resize(j); m_tri_bboxes.resize(j); m_patch.resize(j); m_back_patch.resize(j); m_two_sided.resize(j);
     for(std::size_t i = 0; i < out_idx.size(); ++i) {
       const Triangle_indices& t = out_idx[i];
       Triangle_3 tri(m_points[t[0]], m_points[t[1]], m_points[t[2]]);
       if(tri.is_degenerate()) continue;
       m_indices.push_back(t); m_triangles.push_back(tri); m_tri_bboxes.push_back(tri.bbox());
-      m_patch.push_back(out_patch[i]); m_two_sided.push_back(out_sided[i]);
+      m_patch.push_back(out_patch[i]); m_back_patch.push_back(out_back[i]); m_two_sided.push_back(out_sided[i]);
     }
     if(m_indices.empty()) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)", Input_error_cause::NO_SURFACE);
     m_bbox = Bbox_3();
@@ -550,6 +575,74 @@ private:
   static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b)
   {
     return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
+  }
+
+  /*
+   * The two sides of the sheets: `back[f]` is the part of face `f`'s reversed copy. Each sheet is
+   * oriented consistently across the edges it shares with exactly one other sheet face (breadth
+   * first from its lowest face; a flipped face swaps its two parts), so that its front and back are
+   * two coherent patches. A sheet whose copies were all in one part `NAME` gets the part
+   * `NAME_back` for its back side. Then `m_back_patch` is set (equal to `m_patch` off the sheets).
+   */
+  void orient_sheets(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& edges,
+                     const std::vector<std::size_t>& edge_begin, std::vector<int>& back)
+  {
+    const std::size_t m = m_indices.size();
+    m_back_patch = m_patch;
+    if(m_summary.sheet_triangles == 0) return;
+    // sheet faces across each edge met by exactly two sheet faces
+    std::vector<std::vector<std::uint32_t>> nbr(m);
+    for(std::size_t e = 0; e + 1 < edge_begin.size(); ++e) {
+      std::uint32_t f0 = UINT32_MAX, f1 = UINT32_MAX;
+      std::size_t cnt = 0;
+      for(std::size_t i = edge_begin[e]; i < edge_begin[e + 1]; ++i)
+        if(m_two_sided[edges[i].second]) { ++cnt; (f0 == UINT32_MAX ? f0 : f1) = edges[i].second; }
+      if(cnt == 2 && f0 != f1) { nbr[f0].push_back(f1); nbr[f1].push_back(f0); }
+    }
+    // does face g run edge (a, b) in the same direction as face f?
+    auto same_direction = [&](std::uint32_t f, std::uint32_t g) {
+      const Triangle_indices& tf = m_indices[f];
+      const Triangle_indices& tg = m_indices[g];
+      for(int i = 0; i < 3; ++i)
+        for(int j = 0; j < 3; ++j)
+          if(tf[std::size_t(i)] == tg[std::size_t(j)] && tf[std::size_t((i + 1) % 3)] == tg[std::size_t((j + 1) % 3)]) return true;
+      return false;
+    };
+    std::vector<char> seen(m, 0);
+    std::vector<std::uint32_t> queue;
+    for(std::size_t s = 0; s < m; ++s) {
+      if(!m_two_sided[s] || seen[s]) continue;
+      seen[s] = 1;
+      queue.assign(1, std::uint32_t(s));
+      for(std::size_t qi = 0; qi < queue.size(); ++qi) {
+        const std::uint32_t f = queue[qi];
+        for(std::uint32_t g : nbr[f]) {
+          if(seen[g]) continue;
+          seen[g] = 1;
+          if(same_direction(f, g)) {   // g is the other way round: flip it, its sides swap parts
+            std::swap(m_indices[g][1], m_indices[g][2]);
+            std::swap(m_patch[g], back[g]);
+            ++m_summary.sheet_reoriented;
+          }
+          queue.push_back(g);
+        }
+      }
+    }
+    std::map<int, int> added;   // part -> its added back part
+    for(std::size_t f = 0; f < m; ++f) {
+      if(!m_two_sided[f]) continue;
+      if(back[f] != m_patch[f]) { m_back_patch[f] = back[f]; continue; }
+      auto it = added.find(m_patch[f]);
+      if(it == added.end()) {
+        std::string name = m_patch_names[std::size_t(m_patch[f])] + "_back";
+        for(int k = 2; std::find(m_patch_names.begin(), m_patch_names.end(), name) != m_patch_names.end(); ++k)
+          name = m_patch_names[std::size_t(m_patch[f])] + "_back" + std::to_string(k);
+        m_patch_names.push_back(name);
+        ++m_summary.sheet_back_parts;
+        it = added.emplace(m_patch[f], int(m_patch_names.size() - 1)).first;
+      }
+      m_back_patch[f] = it->second;
+    }
   }
 
   /*
@@ -585,18 +678,25 @@ private:
     };
     std::vector<std::uint32_t> kept;
     std::vector<char> had_reversed;
+    std::vector<int> reversed_part;   // the part of the first reversed copy
     kept.reserve(n);
     for(std::size_t i = 0; i < n;) {
       std::size_t j = i;
       while(j < n && keyed[j].first == keyed[i].first) ++j;
       const std::uint32_t rep = keyed[i].second;   // lowest index of the group
       bool reversed = false;
-      for(std::size_t k = i + 1; k < j; ++k) {
+      int rpart = parts[rep];
+      for(std::size_t k = i + 1; k < j; ++k) {   // the group is sorted by index: the first copy first
         if(parity(tris[keyed[k].second]) == parity(tris[rep])) ++m_summary.duplicate_triangles;
-        else { ++m_summary.reversed_duplicates; reversed = true; }
+        else {
+          ++m_summary.reversed_duplicates;
+          if(!reversed) rpart = parts[keyed[k].second];
+          reversed = true;
+        }
       }
       kept.push_back(rep);
       had_reversed.push_back(reversed);
+      reversed_part.push_back(rpart);
       i = j;
     }
     // back to input order (deterministic, and parts of a file stay together)
@@ -608,10 +708,12 @@ private:
     m_patch.resize(m);
     m_two_sided.assign(m, false);
     std::vector<char> candidate(m);
+    std::vector<int> back(m);
     for(std::size_t i = 0; i < m; ++i) {
       m_indices[i] = tris[kept[order[i]]];
       m_patch[i] = parts[kept[order[i]]];
       candidate[i] = had_reversed[order[i]];
+      back[i] = reversed_part[order[i]];
     }
     tris.clear(); tris.shrink_to_fit();
 
@@ -681,6 +783,7 @@ private:
         }
       for(std::size_t i = 0; i < m; ++i) uf[i] = std::uint32_t(i);
     }
+    orient_sheets(edges, edge_begin, back);
 
     // 3. orientation of the one-sided faces
     std::vector<std::uint32_t> one_sided;
@@ -812,7 +915,7 @@ private:
   std::vector<Triangle_indices> m_indices;
   std::vector<Triangle_3> m_triangles;
   std::vector<Bbox_3> m_tri_bboxes;
-  std::vector<int> m_patch;
+  std::vector<int> m_patch, m_back_patch;
   std::vector<bool> m_two_sided;
   std::vector<std::uint8_t> m_feature_mask;   // bit k: edge (k, k+1) of the triangle is a feature
   bool m_has_features = false;

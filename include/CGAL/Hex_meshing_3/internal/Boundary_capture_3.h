@@ -2279,9 +2279,11 @@ private:
     if(d.patch_names().size() <= 1) return;
     for(std::size_t f : top_faces) {
       auto& bf = m.boundary_faces[f];
-      Vec3 c{{0, 0, 0}};
+      Vec3 c{{0, 0, 0}}, g{{0, 0, 0}};
       for(int k = 0; k < 4; ++k) c = add(c, mul(P[bf.vertices[k]], 0.25));
-      bf.patch = 6 + d.patch(d.closest_triangle(Point_3(c[0], c[1], c[2])));
+      for(Index v : m.hexahedra[bf.cell]) g = add(g, mul(P[v], 0.125));
+      // of a sheet, the part of the side facing the face's cell (its centroid: the cell is valid)
+      bf.patch = 6 + d.patch_facing(d.closest_triangle(Point_3(c[0], c[1], c[2])), Point_3(g[0], g[1], g[2]));
     }
   }
 

@@ -324,13 +324,13 @@ public:
     if(spread) c.normal_spread = normal_spread(meets);
     if(thin) c.thickness = thickness(b, meets);
     if(patch)
-      for(const auto& mt : meets) {
-        const int p = m_domain.patch(mt.first);
-        if(p < 0 || std::size_t(p) >= m_patch_sizes.size()) continue;
-        const auto& ps = m_patch_sizes[std::size_t(p)];
-        if(ps.first > 0) c.patch_size = (std::min)(c.patch_size, ps.first);
-        if(ps.second > 0) c.patch_curvature_size = (std::min)(c.patch_curvature_size, ps.second);
-      }
+      for(const auto& mt : meets)
+        for(const int p : {m_domain.patch(mt.first), m_domain.back_patch(mt.first)}) {   // a sheet: both sides
+          if(p < 0 || std::size_t(p) >= m_patch_sizes.size()) continue;
+          const auto& ps = m_patch_sizes[std::size_t(p)];
+          if(ps.first > 0) c.patch_size = (std::min)(c.patch_size, ps.first);
+          if(ps.second > 0) c.patch_curvature_size = (std::min)(c.patch_curvature_size, ps.second);
+        }
   }
 
   // the unit normal of triangle t (false if it is degenerate in double precision)
@@ -1014,11 +1014,11 @@ public:
   int surface_patch(const Node& nd, int f) const
   {
     if(m_domain.patch_names().size() <= 1) return 6;
-    // the part of the triangle nearest to the face centre
+    // the part of the triangle nearest to the face centre (of a sheet: of its side facing the cell)
     const Cell c = make_cell(nd);
     const auto& q = hex_local_faces()[f];
     const Point_3 m = CGAL::centroid(c.corners[q[0]], c.corners[q[1]], c.corners[q[2]], c.corners[q[3]]);
-    return 6 + m_domain.patch(m_domain.closest_triangle(m));
+    return 6 + m_domain.patch_facing(m_domain.closest_triangle(m), CGAL::midpoint(c.corners[0], c.corners[6]));
   }
 
 private:
