@@ -597,6 +597,66 @@ def main():
         rc = run(["checkMesh", "-case", case, "-allTopology"], env=dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam"))
         check(rc.returncode == 0 and "Mesh OK" in rc.stdout, f"{label}: checkMesh -allTopology: Mesh OK")
 
+    # 8a'. a body touching or crossing a box face: the hole in the box patch, the body's section,
+    # the filled wedge (reported)
+    print("[contacts with the box faces]")
+    def write_cylinder(path, R, dip, n=64, L=1.0):   # lying on the ground along y, dipping below z = 0
+        pts, tri = [], []
+        for k in range(n):
+            a = 2 * math.pi * k / n + math.pi / n   # a flat facet at the bottom
+            pts += [(R * math.sin(a), -L, R - dip - R * math.cos(a)), (R * math.sin(a), L, R - dip - R * math.cos(a))]
+        for k in range(n):
+            a0, b0, a1, b1 = 2 * k, 2 * k + 1, 2 * ((k + 1) % n), 2 * ((k + 1) % n) + 1
+            tri += [(a0, a1, b1), (a0, b1, b0), (2 * n, a0, a1), (2 * n + 1, b1, b0)]
+        pts += [(0, -L, R - dip), (0, L, R - dip)]
+        with open(path, "w") as f:
+            f.write(f"OFF\n{len(pts)} {len(tri)} 0\n")
+            f.writelines("%.17g %.17g %.17g\n" % p for p in pts)
+            f.writelines("3 %d %d %d\n" % t for t in tri)
+        # the section by z = 0: the polygon's width there (its facets crossing z = 0), times 2L
+        xs = []
+        for k in range(n):
+            (x0, _, z0), (x1, _, z1) = pts[2 * k], pts[2 * ((k + 1) % n)]
+            if (z0 < 0) != (z1 < 0):
+                xs.append(x0 + (x1 - x0) * (0 - z0) / (z1 - z0))
+        return (max(xs) - min(xs)) * 2 * L
+    R_, h_ = 0.5, 0.0625
+    section = write_cylinder(os.path.join(W, "cylinder_ground.off"), R_, 0.002)
+    write_off(os.path.join(W, "box_ground.off"), [box_tris((-0.5, -0.5, -0.3), (0.5, 0.5, 0.5))])
+    for stem, body in (("cylinder_ground", section), ("box_ground", 1.0)):
+        case, rep = os.path.join(W, stem + "_case"), os.path.join(W, stem + ".json")
+        hexmesh(ctx, [os.path.join(W, stem + ".off")], [case],
+                ["-q", "--box", "-2,-2,0,2,2,2", "--size", "0.25", "--surface-size", str(h_), "--region", "seed:1.9,1.9,1.9"],
+                rep, body_fitted=True)
+        bc = json.load(open(rep))["box_contacts"]
+        pts, faces, owner, nei, patches = read_poly(case)
+        st, n = patches["zmin"]
+        meshed = 0.0
+        for f in range(st, st + n):
+            P = pts[faces[f]]
+            meshed += 0.5 * abs(sum(P[i][0] * P[(i + 1) % len(P)][1] - P[(i + 1) % len(P)][0] * P[i][1] for i in range(len(P))))
+        c = bc["first_100"][0] if bc["first_100"] else None
+        check(bc["contacts"] == 1 and c["patch"] == "zmin" and abs(c["area"] - (16 - meshed)) < 1e-9 * 16
+              and all(f["unmeshed_area"] == 0 for f in bc["faces"] if f["patch"] != "zmin"),
+              f"{stem}: one contact, on zmin; its area {c['area'] if c else 0:.6f} is what the zmin patch read back from "
+              f"polyMesh leaves uncovered ({16 - meshed:.6f})")
+        check(c is not None and abs(c["centre"][0]) < 0.02 and abs(c["centre"][1]) < 0.02,
+              f"{stem}: the contact is under the body (centre {c['centre'] if c else None})")
+        check(c is not None and abs(c["body_area"] - body) <= 0.25 * body,
+              f"{stem}: the body's section {c['body_area'] if c else 0:.4f} (sampled) is the exact one {body:.4f} within 25%")
+        if stem == "cylinder_ground":
+            # the wedge thinner than the local size is filled, and only it: the gap under a cylinder
+            # is about x^2 / 2R, so the hole reaches |x| <= sqrt(2 R gap)
+            reach = max(-c["bbox"][0], c["bbox"][3])
+            check(c["filled_area"] > 0.5 and 0.5 * h_ <= c["max_gap"] <= 1.5 * h_ and reach <= math.sqrt(2 * R_ * 1.5 * h_),
+                  f"{stem}: a wedge of {c['filled_area']:.3f} filled, up to {c['max_gap'] / h_:.2f} x the surface size thick, "
+                  f"reaching |x| = {reach:.3f} (gap {reach * reach / (2 * R_) / h_:.2f} x surface size)")
+        else:
+            check(c["filled_area"] <= 0.02 * c["area"], f"{stem}: a wall crossing the ground leaves nothing filled "
+                  f"({c['filled_area']:.2g} of {c['area']:.4f})")
+        rc = run(["checkMesh", "-case", case, "-allTopology"], env=dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam"))
+        check(rc.returncode == 0 and "Mesh OK" in rc.stdout, f"{stem}: checkMesh -allTopology: Mesh OK")
+
     # 8b. features: detected, reported, refined along; user lines
     print("[features]")
     lines = os.path.join(W, "lines.obj.gz")

@@ -511,7 +511,8 @@ int main(int argc, char** argv)
       return INPUT;
     }
 
-    // patches: rename / merge, then types
+    // patches: rename / merge, then types; the box faces' patches are remembered (box contacts)
+    std::vector<std::string> box_patch_names(mesh.patch_names.begin(), mesh.patch_names.begin() + 6);
     if(!name_rules.empty()) {
       auto rename = [&](const std::string& n) {
         std::smatch m;
@@ -538,6 +539,7 @@ int main(int argc, char** argv)
             break;
           }
       mesh.rename_patches(rename);
+      for(std::string& n : box_patch_names) n = rename(n);
     }
     mesh.patch_types.resize(mesh.patch_names.size());
     for(std::size_t p = 0; p < mesh.patch_names.size(); ++p) {
@@ -695,6 +697,31 @@ int main(int argc, char** argv)
                                         {"boundary_edges", t.boundary_edges}};
         };
         j["topology"] = {{"input", tj(HM::surface_topology(domain))}, {"mesh_boundary", tj(HM::boundary_topology(pm))}};
+        // where a body touches or crosses a box face: the holes of the box patches, the body's
+        // section and the filled wedge around it
+        std::vector<char> box_patch(mesh.patch_names.size(), 0);
+        for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
+          box_patch[p] = std::find(box_patch_names.begin(), box_patch_names.end(), mesh.patch_names[p]) != box_patch_names.end();
+        const HM::Box_contacts bc = HM::box_contacts(mesh, pm, domain, box_patch);
+        static const char* const box_names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+        nlohmann::ordered_json jfaces = nlohmann::ordered_json::array(), jc = nlohmann::ordered_json::array();
+        for(int p = 0; p < 6; ++p)
+          jfaces.push_back({{"patch", box_names[p]}, {"area", bc.face_area[std::size_t(p)]}, {"meshed_area", bc.meshed_area[std::size_t(p)]},
+                            {"unmeshed_area", bc.unmeshed_area[std::size_t(p)]}, {"unmeshed_at_border", bc.border_area[std::size_t(p)]}});
+        for(std::size_t i = 0; i < bc.contacts.size() && i < 100; ++i) {
+          const HM::Box_contact& c = bc.contacts[i];
+          jc.push_back({{"patch", box_names[c.patch]}, {"area", c.area}, {"body_area", c.body_area}, {"filled_area", c.filled_area},
+                        {"max_gap", c.max_gap}, {"samples", c.samples}, {"centre", loc(c.centre)},
+                        {"bbox", {c.bbox.xmin(), c.bbox.ymin(), c.bbox.zmin(), c.bbox.xmax(), c.bbox.ymax(), c.bbox.zmax()}}});
+        }
+        j["box_contacts"] = {{"filled_area", bc.filled_area}, {"contacts", bc.contacts.size()}, {"faces", jfaces}, {"first_100", jc}};
+        if(!quiet)
+          for(std::size_t i = 0; i < bc.contacts.size() && i < 10; ++i) {
+            const HM::Box_contact& c = bc.contacts[i];
+            std::cerr << "hexmesh: contact with the box face " << box_names[c.patch] << " at (" << c.centre[0] << ", " << c.centre[1]
+                      << ", " << c.centre[2] << "): " << c.area << " left out of the mesh, " << c.body_area << " inside the input, "
+                      << c.filled_area << " filled (a wedge up to " << c.max_gap << " thick)\n";
+          }
       }
       nlohmann::ordered_json jp = nlohmann::ordered_json::array();
       const auto psizes = mesh.patch_sizes();

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <unordered_map>
 #include <utility>
 #include <memory>
@@ -448,6 +449,219 @@ Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, con
     const double dist = std::sqrt(CGAL::to_double(CGAL::squared_distance(p, search.begin()->first)));
     if(dist > r.max_corner_distance) { r.max_corner_distance = dist; r.worst_corner_location = vec(p); }
   }
+  return r;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief where the mesh leaves a face of the meshing box uncovered: a body touching or crossing
+ * the box face (the motorBike's tyres dip 4e-5 below the ground), see `box_contacts()`.
+ */
+struct Box_contact
+{
+  int patch = 0;                 ///< the box face: 0..5 (xmin, xmax, ymin, ymax, zmin, zmax)
+  double area = 0;               ///< area of the box face left out of the mesh there (a hole of the face's patch)
+  double body_area = 0;          ///< of it, the part inside the input (its section by the face; sampled, `Domain::is_inside()`)
+  double filled_area = 0;        ///< `area - body_area`: the thin wedge between the input and the face, filled
+  double max_gap = 0;            ///< the largest distance to the input of a filled sample (the wedge's thickness there)
+  std::size_t samples = 0;       ///< samples drawn in the hole (a square grid over its box)
+  std::array<double, 3> centre = {{0, 0, 0}};   ///< the hole's area centroid
+  Bbox_3 bbox;                   ///< the hole's box
+};
+
+/// \ingroup PkgHexMeshing3Quality
+/// \brief the six box faces' coverage and the holes in it (see `box_contacts()`)
+struct Box_contacts
+{
+  std::array<double, 6> face_area = {{0, 0, 0, 0, 0, 0}};       ///< the box faces' areas
+  std::array<double, 6> meshed_area = {{0, 0, 0, 0, 0, 0}};     ///< the area of the mesh faces on each
+  std::array<double, 6> unmeshed_area = {{0, 0, 0, 0, 0, 0}};   ///< `face_area - meshed_area`
+  std::array<double, 6> border_area = {{0, 0, 0, 0, 0, 0}};     ///< of it, in holes that reach the face's border (not in `contacts`)
+  std::vector<Box_contact> contacts;                             ///< the holes inside the faces, largest first
+  double filled_area = 0;                                        ///< summed over `contacts`
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief measures, on each face of `mesh.box`, the area that the faces of the box patches lying on
+ * it cover (`box_patch[p]`: is patch `p` a box patch; empty: the patches 0..5), and finds the holes
+ * in it: loops of patch edges (hanging nodes included, from the polyhedral form `pm`) inside
+ * the face. Each hole is sampled on a square grid of about `samples_per_hole` points: a sample
+ * inside the input (`domain.is_inside()`, a winding-number estimate on open input) is in the body's
+ * section, any other one is filled (the mesh left out a wedge between the input and the face,
+ * thinner there than the local cells); `max_gap` is the largest distance from a filled sample to the
+ * input. A hole that reaches the face's border (a body crossing the box's edge) is not a contact:
+ * its area is counted in `border_area`.
+ */
+template <typename HexMesh, typename PolyhedralMesh, typename Domain>
+Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const Domain& domain,
+                          std::vector<char> box_patch = {}, std::size_t samples_per_hole = 20000)
+{
+  if(box_patch.empty()) {   // the meshing's own numbering: the box faces are the patches 0..5
+    box_patch.assign(pm.patches.size(), 0);
+    for(std::size_t p = 0; p < 6 && p < box_patch.size(); ++p) box_patch[p] = 1;
+  }
+  typedef typename Domain::Point_3 Point_3;
+  Box_contacts r;
+  const Bbox_3& B = mesh.box;
+  const double lo[3] = {B.xmin(), B.ymin(), B.zmin()}, hi[3] = {B.xmax(), B.ymax(), B.zmax()};
+  // the faces on each box plane, from the box patches (after renaming, several planes may share a patch)
+  std::array<std::vector<std::size_t>, 6> on_plane;
+  for(std::size_t q = 0; q < pm.patches.size() && q < box_patch.size(); ++q) {
+    if(!box_patch[q]) continue;
+    for(std::size_t f = pm.patches[q].start; f < pm.patches[q].start + pm.patches[q].size; ++f)
+      for(int p = 0; p < 6; ++p) {
+        const int axis = p / 2;
+        const double plane = p % 2 ? hi[axis] : lo[axis];
+        bool all = true;
+        for(auto v : pm.faces[f]) {
+          const auto& x = mesh.points[v];
+          const double c = CGAL::to_double(axis == 0 ? x.x() : axis == 1 ? x.y() : x.z());
+          if(c != plane) { all = false; break; }
+        }
+        if(all) { on_plane[std::size_t(p)].push_back(f); break; }
+      }
+  }
+  for(int p = 0; p < 6; ++p) {
+    const int axis = p / 2, ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    const double plane = p % 2 ? hi[axis] : lo[axis];
+    r.face_area[std::size_t(p)] = (hi[ua] - lo[ua]) * (hi[va] - lo[va]);
+    auto uv = [&](std::uint32_t i) {
+      const auto& q = mesh.points[i];
+      const double c[3] = {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
+      return std::array<double, 2>{{c[ua], c[va]}};
+    };
+    // meshed area (shoelace in the face's plane) and the directed edges of the patch
+    std::unordered_map<std::uint64_t, int> directed;
+    double meshed = 0;
+    const auto& faces = on_plane[std::size_t(p)];
+    for(std::size_t f : faces) {
+      const auto& F = pm.faces[f];
+      double a = 0;
+      for(std::size_t k = 0; k < F.size(); ++k) {
+        const auto x = uv(F[k]), y = uv(F[(k + 1) % F.size()]);
+        a += x[0] * y[1] - x[1] * y[0];
+        ++directed[std::uint64_t(F[k]) << 32 | F[(k + 1) % F.size()]];
+      }
+      meshed += std::abs(a) / 2;
+    }
+    r.meshed_area[std::size_t(p)] = meshed;
+    r.unmeshed_area[std::size_t(p)] = (std::max)(0.0, r.face_area[std::size_t(p)] - meshed);
+    // boundary edges of the patch away from the face's border, chained into loops
+    auto on_border = [&](const std::array<double, 2>& x) {
+      return x[0] == lo[ua] || x[0] == hi[ua] || x[1] == lo[va] || x[1] == hi[va];
+    };
+    std::multimap<std::uint32_t, std::uint32_t> next;
+    std::vector<std::uint64_t> keys;
+    for(const auto& e : directed) keys.push_back(e.first);
+    std::sort(keys.begin(), keys.end());   // deterministic
+    for(std::uint64_t k : keys) {
+      const std::uint32_t a = std::uint32_t(k >> 32), b = std::uint32_t(k & 0xffffffffu);
+      if(directed.count(std::uint64_t(b) << 32 | a)) continue;
+      const auto xa = uv(a), xb = uv(b);
+      if(on_border(xa) && on_border(xb) && (xa[0] == xb[0] || xa[1] == xb[1])) continue;   // along the border
+      next.emplace(a, b);
+    }
+    // loops: area (signed: holes run against the patch's faces), box; chains ending on the border
+    // belong to holes that reach it
+    struct Loop { std::vector<std::array<double, 2>> pts; double area; };
+    std::vector<Loop> holes, islands;
+    double face_sign = 0;
+    if(!faces.empty()) {
+      const auto& F = pm.faces[faces.front()];
+      for(std::size_t k = 0; k < F.size(); ++k) {
+        const auto x = uv(F[k]), y = uv(F[(k + 1) % F.size()]);
+        face_sign += x[0] * y[1] - x[1] * y[0];
+      }
+    }
+    while(!next.empty()) {
+      auto it = next.begin();
+      const std::uint32_t start = it->first;
+      Loop L;
+      std::uint32_t v = start;
+      bool closed = false;
+      while(true) {
+        auto e = next.find(v);
+        if(e == next.end()) break;
+        L.pts.push_back(uv(v));
+        v = e->second;
+        next.erase(e);
+        if(v == start) { closed = true; break; }
+      }
+      double a = 0;
+      for(std::size_t k = 0; k < L.pts.size(); ++k) {
+        const auto& x = L.pts[k];
+        const auto& y = L.pts[(k + 1) % L.pts.size()];
+        a += x[0] * y[1] - x[1] * y[0];
+      }
+      L.area = a / 2;
+      if(!closed) continue;   // a chain from the border to the border: a hole reaching it
+      ((L.area > 0) == (face_sign > 0) ? islands : holes).push_back(std::move(L));
+    }
+    auto inside = [](const Loop& L, const std::array<double, 2>& x) {   // even-odd rule
+      bool in = false;
+      for(std::size_t i = 0, j = L.pts.size() - 1; i < L.pts.size(); j = i++) {
+        const auto& a = L.pts[i];
+        const auto& b = L.pts[j];
+        if((a[1] > x[1]) != (b[1] > x[1]) && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0]) in = !in;
+      }
+      return in;
+    };
+    for(Loop& H : holes) {
+      Box_contact c;
+      c.patch = p;
+      double ulo = H.pts[0][0], uhi = ulo, vlo = H.pts[0][1], vhi = vlo, cu = 0, cv = 0, a2 = 0;
+      for(std::size_t k = 0; k < H.pts.size(); ++k) {
+        const auto& x = H.pts[k];
+        const auto& y = H.pts[(k + 1) % H.pts.size()];
+        ulo = (std::min)(ulo, x[0]); uhi = (std::max)(uhi, x[0]); vlo = (std::min)(vlo, x[1]); vhi = (std::max)(vhi, x[1]);
+        const double w = x[0] * y[1] - x[1] * y[0];
+        a2 += w; cu += (x[0] + y[0]) * w; cv += (x[1] + y[1]) * w;
+      }
+      c.area = std::abs(H.area);
+      // the islands (meshed parts) inside this hole
+      std::vector<const Loop*> inner;
+      for(const Loop& I : islands)
+        if(inside(H, I.pts[0])) { inner.push_back(&I); c.area -= std::abs(I.area); }
+      double pt[3];
+      pt[axis] = plane;
+      pt[ua] = a2 != 0 ? cu / (3 * a2) : ulo; pt[va] = a2 != 0 ? cv / (3 * a2) : vlo;
+      c.centre = {{pt[0], pt[1], pt[2]}};
+      double blo[3], bhi[3];
+      blo[axis] = bhi[axis] = plane; blo[ua] = ulo; bhi[ua] = uhi; blo[va] = vlo; bhi[va] = vhi;
+      c.bbox = Bbox_3(blo[0], blo[1], blo[2], bhi[0], bhi[1], bhi[2]);
+      // samples on a square grid over the hole's box, at the cells' centres
+      const double box_area = (uhi - ulo) * (vhi - vlo);
+      std::size_t inside_hole = 0, in_body = 0;
+      if(box_area > 0 && samples_per_hole > 0) {
+        const double step = std::sqrt(box_area / double(samples_per_hole));
+        const std::size_t nu = (std::max)(std::size_t(1), std::size_t(std::ceil((uhi - ulo) / step)));
+        const std::size_t nv = (std::max)(std::size_t(1), std::size_t(std::ceil((vhi - vlo) / step)));
+        for(std::size_t i = 0; i < nu; ++i)
+          for(std::size_t j = 0; j < nv; ++j) {
+            const std::array<double, 2> x{{ulo + (double(i) + 0.5) * (uhi - ulo) / double(nu), vlo + (double(j) + 0.5) * (vhi - vlo) / double(nv)}};
+            bool in = inside(H, x);
+            for(const Loop* I : inner) if(in && inside(*I, x)) in = false;
+            if(!in) continue;
+            ++inside_hole;
+            double q[3];
+            q[axis] = plane; q[ua] = x[0]; q[va] = x[1];
+            const Point_3 s(q[0], q[1], q[2]);
+            if(domain.is_inside(s)) { ++in_body; continue; }
+            c.max_gap = (std::max)(c.max_gap, std::sqrt(CGAL::to_double(domain.squared_distance(s))));
+          }
+      }
+      c.samples = inside_hole;
+      c.body_area = inside_hole ? c.area * double(in_body) / double(inside_hole) : 0.0;
+      c.filled_area = c.area - c.body_area;
+      r.filled_area += c.filled_area;
+      r.contacts.push_back(c);
+    }
+    double in_contacts = 0;
+    for(const Box_contact& c : r.contacts) if(c.patch == p) in_contacts += c.area;
+    r.border_area[std::size_t(p)] = (std::max)(0.0, r.unmeshed_area[std::size_t(p)] - in_contacts);
+  }
+  std::stable_sort(r.contacts.begin(), r.contacts.end(), [](const Box_contact& a, const Box_contact& b) { return a.area > b.area; });
   return r;
 }
 
