@@ -23,6 +23,7 @@ checkMesh; builds surface_distance (cmake --build build --target surface_distanc
 import argparse
 import gzip
 import json
+import math
 import os
 import re
 import shutil
@@ -42,6 +43,25 @@ HEXMESH_OPTIONS = ["--box", "-5,-4,0,15,4,8", "--size", "1", "--surface-size", "
                    "--region", "seed:3.0001,3.0001,0.43"]
 BOX_PATCHES = {"hexmesh": "xmin|xmax|ymin|ymax|zmin|zmax",
                "snappyHexMesh": "frontAndBack|inlet|outlet|lowerWall|upperWall"}
+GROUND_PATCH = {"hexmesh": "zmin", "snappyHexMesh": "lowerWall"}
+GROUND_AREA = 20.0 * 8.0   # the box (-5,-4,0)-(15,4,8)
+
+
+def patch_areas(obj):
+    """the area of each group of a triangulated OBJ (foamToSurface writes one group per patch)"""
+    pts, areas, group = [], {}, None
+    for line in open(obj):
+        if line.startswith("v "):
+            pts.append(tuple(float(x) for x in line.split()[1:4]))
+        elif line.startswith("g ") or line.startswith("o "):
+            group = line.split()[1]
+        elif line.startswith("f "):
+            a, b, c = (pts[int(x.split("/")[0]) - 1] for x in line.split()[1:4])
+            u = [b[i] - a[i] for i in range(3)]
+            v = [c[i] - a[i] for i in range(3)]
+            n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+            areas[group] = areas.get(group, 0.0) + 0.5 * math.sqrt(sum(x * x for x in n))
+    return areas
 
 
 def timed(cmd, cwd, log):
@@ -88,7 +108,13 @@ def fidelity(case, name, work, distance_tool, bike, samples):
     if r.returncode != 0:
         return {"error": r.stderr.strip()}
     j = json.loads(r.stdout)
-    return {"mesh_to_input": j["a_to_b"], "input_to_mesh": j["b_to_a"], "mesh_triangles": j["a_triangles"]}
+    areas = patch_areas(surf)
+    # the ground the mesh does not cover: under the tyres (their section and any filled wedge)
+    ground = GROUND_AREA - areas.get(GROUND_PATCH[name], 0.0)
+    # patches on the two sides of the zero-thickness sheets (our NAME / NAME-shadow pairs)
+    shadow = sorted(n for n, a in areas.items() if "-shadow" in n and a > 0)
+    return {"mesh_to_input": j["a_to_b"], "input_to_mesh": j["b_to_a"], "mesh_triangles": j["a_triangles"],
+            "ground_left_out_m2": ground, "shadow_patches_with_faces": len(shadow)}
 
 
 def main():
@@ -121,7 +147,9 @@ def main():
     if rc == 0:
         ours["checkMesh"] = checkmesh(case)
         ours["fidelity"] = fidelity(case, "hexmesh", work, args.surface_distance, bike, args.samples)
-        ours["report_seconds"] = json.load(open(rep)).get("seconds", {})
+        jr = json.load(open(rep))
+        ours["report_seconds"] = jr.get("seconds", {})
+        ours["box_contacts"] = jr.get("box_contacts", {})
     results["hexmesh"] = ours
 
     # snappyHexMesh
@@ -168,7 +196,10 @@ def main():
             ("max non-orthogonality", lambda r: "%.1f" % r["checkMesh"]["max_non_orthogonality"]),
             ("max skewness", lambda r: "%.2f" % r["checkMesh"]["max_skewness"]),
             ("mesh->input mean / p99 / max (m)", lambda r: "%.4f / %.4f / %.4f" % tuple(r["fidelity"]["mesh_to_input"][k] for k in ("mean", "p99", "max"))),
-            ("input->mesh mean / p99 / max (m)", lambda r: "%.4f / %.4f / %.4f" % tuple(r["fidelity"]["input_to_mesh"][k] for k in ("mean", "p99", "max")))]
+            ("input->mesh mean / p99 / max (m)", lambda r: "%.4f / %.4f / %.4f" % tuple(r["fidelity"]["input_to_mesh"][k] for k in ("mean", "p99", "max"))),
+            ("ground left out of the mesh (m2)", lambda r: "%.4f" % r["fidelity"]["ground_left_out_m2"]),
+            ("'-shadow' patches with faces", lambda r: r["fidelity"]["shadow_patches_with_faces"]),
+            ("filled at box contacts (our report, m2)", lambda r: "%.4f" % r["box_contacts"]["filled_area"])]
     print(f"{'':36s}" + "".join(f"{n:>26s}" for n in names))
     for label, f in rows:
         cells = []
