@@ -1,0 +1,583 @@
+#!/usr/bin/python3
+"""Tet versus hex: the benchmark suite (hexmesh, TetGen raw and on a remeshed surface, CGAL Mesh_3).
+
+For every surface of the repository's test data (and of ../shared/data when present; a file of
+the same name there is preferred), at resolutions h = bounding-box diagonal / D for each D of
+--divisions (default 40 and 80), runs:
+  hexmesh          --size h --surface-size h (cells of edge h inside and on the surface; defaults
+                   otherwise), writing Gmsh MSH (its boundary quads are measured) and, when
+                   OpenFOAM's checkMesh is installed, an OpenFOAM case judged by
+                   `checkMesh -allTopology`;
+  hexmesh-adaptive --size 4h --surface-size h --thin-cells 3 (the same outputs);
+  tetgen           TetGen -pq1.2/15 -a(h^3/(6 sqrt 2)) on the input's triangles;
+  tetgen-remeshed  the same after CGAL's isotropic remeshing of the surface to edge length h;
+  mesh3            CGAL Mesh_3: edge size h, facet size h/sqrt(3), cell size h sqrt(6)/4, facet
+                   distance h/10 (see tet_baselines.cpp).
+Each mesher runs as its own process under /usr/bin/time (wall seconds and peak memory of the
+process), with a timeout. Every mesh's boundary is measured against the input by the same tool
+(surface_distance: two-sided, area-uniform samples plus vertices). Failures are results: each run
+is classed valid mesh / clear error (non-zero exit with a message) / silent failure (exit 0 but no
+or an invalid mesh) / crash (killed by a signal, abort) / timeout.
+
+Two jobs (input, h) run at a time, each pinned to one core (taskset); within a job the meshers
+run one after the other on that core.
+
+Writes into --work: results.csv (one row per run), results.json (with the quality histograms),
+robustness.csv, elements_vs_h.png, time_vs_elements.png, quality_histograms.png; with --publish,
+the manual's page doc/Hex_meshing_3/Benchmarks.txt (its figures in doc/Hex_meshing_3/fig/) and
+the README's headline table between its <!-- benchmarks --> markers, all from this run.
+
+Usage: benchmark/Hex_meshing_3/suite.py [--work DIR] [--divisions 40,80] [--only NAME ...]
+           [--jobs 2] [--timeout 150] [--publish] [--reuse]
+Build first: scripts/build.sh, then cmake --build build --target tet_baselines surface_distance.
+Needs Debian's python3-meshio, python3-numpy, python3-matplotlib (/usr/bin/python3).
+"""
+import argparse
+import concurrent.futures
+import csv
+import datetime
+import glob
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import signal
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+BUILD = os.path.join(ROOT, "build")
+DATA_DIRS = [os.path.join(ROOT, "test", "Hex_meshing_3", "data"), os.path.normpath(os.path.join(ROOT, "..", "shared", "data"))]
+MESHERS = ["hexmesh", "hexmesh-adaptive", "tetgen", "tetgen-remeshed", "mesh3"]
+HEX_OPTIONS = {"hexmesh": lambda h: ["--size", repr(h), "--surface-size", repr(h)],
+               # what a user would ask for: coarser inside, h on the surface, thin parts and gaps
+               # refined until 3 cells span them (down to h/4)
+               "hexmesh-adaptive": lambda h: ["--size", repr(4 * h), "--surface-size", repr(h), "--thin-cells", "3"]}
+ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+
+
+def inputs():
+    """name -> path: the test data, overridden by ../shared/data's files of the same name"""
+    found = {}
+    for d in DATA_DIRS:
+        for f in sorted(glob.glob(os.path.join(d, "*.off"))):
+            found[os.path.basename(f)[:-4]] = f
+    return dict(sorted(found.items()))
+
+
+def dirty_inputs():
+    """the inputs whose category in the test data's MANIFEST starts with 'dirty'"""
+    dirty = set()
+    for d in DATA_DIRS:
+        man = os.path.join(d, "MANIFEST.md")
+        if os.path.exists(man):
+            for line in open(man):
+                cols = [c.strip() for c in line.split("|")]
+                if len(cols) > 3 and cols[1].endswith(".off") and cols[2].startswith("dirty"):
+                    dirty.add(cols[1][:-4])
+    return dirty
+
+
+def cpu_model():
+    try:
+        for line in open("/proc/cpuinfo"):
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def read_off_points(path):
+    with open(path) as f:
+        toks = [t for line in f for t in line.split("#")[0].split()]
+    i = 1 if toks[0].upper() == "OFF" else 0
+    nv = int(toks[i])
+    vals = toks[i + 3:i + 3 + 3 * nv]
+    return [(float(vals[3 * k]), float(vals[3 * k + 1]), float(vals[3 * k + 2])) for k in range(nv)]
+
+
+def diagonal(path):
+    pts = read_off_points(path)
+    lo = [min(p[k] for p in pts) for k in range(3)]
+    hi = [max(p[k] for p in pts) for k in range(3)]
+    return math.sqrt(sum((hi[k] - lo[k]) ** 2 for k in range(3)))
+
+
+def timed(cmd, core, timeout, log):
+    """runs cmd pinned to `core`; returns (exit code or None on timeout, wall s, peak MiB, stdout)"""
+    tf = log + ".time"
+    full = ["/usr/bin/time", "-f", "%e %M", "-o", tf] + cmd
+    if shutil.which("taskset") and core is not None:
+        full = ["taskset", "-c", str(core)] + full
+    # its own process group, so that a timeout kills the mesher, not only /usr/bin/time above it
+    p = subprocess.Popen(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=ENV, start_new_session=True)
+    try:
+        stdout, stderr = p.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        return None, float(timeout), None, "", "timeout"
+
+    class R:
+        pass
+    r = R()
+    r.stdout, r.stderr, r.returncode = stdout, stderr, p.returncode
+    with open(log, "w") as f:
+        f.write(r.stdout + r.stderr)
+    wall, mib = None, None
+    try:
+        t = open(tf).read().split()
+        # /usr/bin/time prints "Command terminated by signal N" / "Command exited with non-zero
+        # status N" first when it applies
+        wall, mib = float(t[-2]), float(t[-1]) / 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    rc = r.returncode
+    txt = open(tf).read() if os.path.exists(tf) else ""
+    m = re.search(r"terminated by signal (\d+)", txt)
+    if m:
+        rc = -int(m.group(1))
+    return rc, wall, mib, r.stdout, r.stderr
+
+
+def classify(rc, stderr, elements, valid):
+    if rc is None:
+        return "timeout"
+    if rc < 0 or rc >= 128:
+        return "crash"
+    if rc != 0:
+        return "clear error" if stderr.strip() else "silent failure"
+    return "valid mesh" if elements and valid else "silent failure"
+
+
+def distance(tool, a, b, samples=10000):
+    r = subprocess.run([tool, a, b, "--samples", str(samples)], capture_output=True, text=True)
+    if r.returncode != 0:
+        return None
+    return json.loads(r.stdout)
+
+
+def hex_boundary_and_edges(msh, out_obj):
+    """the boundary quads of a hexmesh MSH as a triangulated OBJ, and the longest hexahedron edge"""
+    import meshio
+    import numpy as np
+    m = meshio.read(msh)
+    quads = np.concatenate([c.data for c in m.cells if c.type == "quad"]) if any(c.type == "quad" for c in m.cells) else np.zeros((0, 4), int)
+    hexes = np.concatenate([c.data for c in m.cells if c.type == "hexahedron"])
+    with open(out_obj, "w") as f:
+        for p in m.points:
+            f.write("v %.17g %.17g %.17g\n" % tuple(p))
+        for q in quads:
+            f.write("f %d %d %d\nf %d %d %d\n" % (q[0] + 1, q[1] + 1, q[2] + 1, q[0] + 1, q[2] + 1, q[3] + 1))
+    E = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+    longest = 0.0
+    P = m.points
+    for a, b in E:
+        longest = max(longest, float(np.max(np.linalg.norm(P[hexes[:, a]] - P[hexes[:, b]], axis=1))))
+    return len(hexes), len(P), longest
+
+
+def checkmesh(case):
+    if shutil.which("checkMesh") is None:
+        return None
+    r = subprocess.run(["checkMesh", "-case", case, "-allTopology"], capture_output=True, text=True, env=ENV)
+    if "Mesh OK" in r.stdout:
+        return "Mesh OK"
+    m = re.search(r"Failed (\d+) mesh checks", r.stdout)
+    return f"Failed {m.group(1)}" if m else "no verdict"
+
+
+def run_job(args, name, path, div, core):
+    diag = diagonal(path)
+    h = diag / div
+    wd = os.path.join(args.work, "runs", f"{name}_{div}")
+    os.makedirs(wd, exist_ok=True)
+    saved = os.path.join(wd, "rows.json")
+    if args.reuse and os.path.exists(saved):
+        rows = [r for r in json.load(open(saved)) if r["mesher"] in args.meshers]
+        if {r["mesher"] for r in rows} == set(args.meshers):
+            print(f"  {name} /{div}: reused {saved}", flush=True)
+            return rows
+    rows = []
+    for mesher in args.meshers:
+        row = {"input": name, "divisions": div, "h": h, "diagonal": diag, "mesher": mesher}
+        log = os.path.join(wd, mesher + ".log")
+        if mesher in HEX_OPTIONS:
+            msh, rep = os.path.join(wd, mesher + ".msh"), os.path.join(wd, mesher + ".json")
+            case = os.path.join(wd, mesher + "_case")
+            outs = ["-o", msh] + (["-o", case] if shutil.which("checkMesh") else [])
+            rc, wall, mib, out, err = timed([args.hexmesh, path] + outs + ["--report", rep, "--force", "-q"] + HEX_OPTIONS[mesher](h),
+                                            core, args.timeout, log)
+            elements, valid = 0, False
+            if rc == 0 and os.path.exists(rep):
+                j = json.load(open(rep))
+                q = j["quality"]
+                elements = j["counts"]["cells"]
+                valid = q["inverted_cells"] == 0 and q["scaled_jacobian"]["min"] > 0
+                row.update({"elements": elements, "vertices": j["counts"]["vertices"],
+                            "seconds": j["seconds"]["total"], "quality_min": q["scaled_jacobian"]["min"],
+                            "sj_mean": q["scaled_jacobian"]["mean"], "max_non_orthogonality": q["non_orthogonality"]["max"],
+                            "max_skewness": q["skewness"]["max"], "hist": {"scaled_jacobian": q["histograms"]["scaled_jacobian"]}})
+                obj = os.path.join(wd, mesher + "_boundary.obj")
+                _, _, longest = hex_boundary_and_edges(msh, obj)
+                row["longest_edge"] = longest
+                row["boundary"] = obj
+                if os.path.isdir(case):
+                    row["checkMesh"] = checkmesh(case)
+        else:
+            off = os.path.join(wd, mesher + "_boundary.off")
+            rc, wall, mib, out, err = timed([args.tet_baselines, mesher, path, repr(h), "--boundary", off], core, args.timeout, log)
+            elements, valid = 0, False
+            try:
+                j = json.loads(out.strip().splitlines()[-1]) if out.strip() else {}
+            except json.JSONDecodeError:
+                j = {}
+            if j.get("status") == "ok":
+                elements = j["elements"]
+                valid = j["inverted"] == 0
+                row.update({"elements": elements, "vertices": j["vertices"], "seconds": j["seconds"],
+                            "quality_min": j["dihedral"]["min"], "max_dihedral": j["dihedral"]["max"],
+                            "max_radius_edge": j["radius_edge"]["max"], "mean_radius_edge": j["radius_edge"]["mean"],
+                            "longest_edge": j["longest_edge"], "remeshing_seconds": j.get("remeshing_seconds"),
+                            "remeshed_triangles": j.get("remeshed_triangles"),
+                            "hist": {"dihedral": {k: j["dihedral"][k] for k in ("lo", "hi", "counts")},
+                                     "radius_edge": {k: j["radius_edge"][k] for k in ("lo", "hi", "counts")}}})
+                if elements:
+                    row["boundary"] = off
+            elif j.get("message"):
+                row["message"] = j["message"]
+        row.update({"exit": rc, "wall_seconds": wall, "peak_MiB": mib})
+        row["outcome"] = classify(rc, err, elements, valid)
+        if rc not in (0, None) and "message" not in row:
+            row["message"] = (err.strip().splitlines() or [""])[-1][:200]
+        if row.get("boundary"):
+            d = distance(args.surface_distance, row["boundary"], path)
+            if d:
+                row.update({"mesh_to_input_mean": d["a_to_b"]["mean"], "mesh_to_input_max": d["a_to_b"]["max"],
+                            "input_to_mesh_mean": d["b_to_a"]["mean"], "input_to_mesh_max": d["b_to_a"]["max"]})
+                row["fidelity"] = max(d["a_to_b"]["mean"], d["b_to_a"]["mean"])
+        print(f"  {name} /{div} {mesher:16s} {row['outcome']:14s} elements {row.get('elements', 0):>9} "
+              f"seconds {row.get('seconds') or 0:8.2f} peak {mib or 0:7.0f} MiB"
+              + (f" fidelity {row['fidelity'] / h:.3f} h" if "fidelity" in row else ""), flush=True)
+        rows.append(row)
+    json.dump(rows, open(saved, "w"), indent=1)
+    return rows
+
+
+CSV_FIELDS = ["input", "divisions", "h", "mesher", "outcome", "exit", "elements", "vertices", "seconds", "wall_seconds",
+              "peak_MiB", "longest_edge", "quality_min", "sj_mean", "max_non_orthogonality", "max_skewness", "max_dihedral",
+              "max_radius_edge", "mean_radius_edge", "mesh_to_input_mean", "mesh_to_input_max", "input_to_mesh_mean",
+              "input_to_mesh_max", "fidelity", "checkMesh", "remeshing_seconds", "remeshed_triangles", "message"]
+
+
+def robustness_of(rows):
+    """input -> mesher -> the worst outcome over the resolutions"""
+    order = ["valid mesh", "clear error", "timeout", "silent failure", "crash"]
+    robustness = {}
+    for r in rows:
+        per = robustness.setdefault(r["input"], {})
+        if r["mesher"] not in per or order.index(r["outcome"]) > order.index(per[r["mesher"]]):
+            per[r["mesher"]] = r["outcome"]
+    return robustness
+
+
+def at_fidelity(rows, mesher, name, f):
+    """elements of `mesher` on `name` at fidelity f: log-log interpolation (or extrapolation, flagged)
+    through its runs"""
+    pts = sorted((r["fidelity"], r["elements"]) for r in rows
+                 if r["input"] == name and r["mesher"] == mesher and r["outcome"] == "valid mesh" and r.get("fidelity"))
+    pts = [p for p in pts if p[0] > 0]
+    if len(pts) < 2:
+        return None, None
+    (f0, n0), (f1, n1) = pts[0], pts[-1]
+    if f0 == f1:
+        return None, None
+    t = (math.log(f) - math.log(f0)) / (math.log(f1) - math.log(f0))
+    if abs(t) > 4:   # too far outside the runs' range to say anything
+        return None, None
+    return math.exp(math.log(n0) + t * (math.log(n1) - math.log(n0))), not (min(f0, f1) <= f <= max(f0, f1))
+
+
+def summarise(rows, divisions):
+    """per input at the finest h: element ratios at matched h and at the hex mesh's fidelity, times"""
+    fine = max(divisions)
+    names = sorted({r["input"] for r in rows})
+    out = []
+    for n in names:
+        by = {r["mesher"]: r for r in rows if r["input"] == n and r["divisions"] == fine}
+        s = {"input": n, "divisions": fine}
+        for m in MESHERS:
+            r = by.get(m)
+            s[m] = r["elements"] if r and r["outcome"] == "valid mesh" else r["outcome"] if r else "-"
+        for hv, tag in (("hexmesh", "hex"), ("hexmesh-adaptive", "adaptive")):
+            hx = by.get(hv)
+            if not (hx and hx["outcome"] == "valid mesh"):
+                continue
+            s[f"{tag} fidelity / h"] = hx.get("fidelity", 0) / hx["h"]
+            for m in ("mesh3", "tetgen-remeshed", "tetgen"):
+                r = by.get(m)
+                if r and r["outcome"] == "valid mesh":
+                    s[f"{m}/{tag} at h"] = r["elements"] / hx["elements"]
+                    s[f"{tag} seconds / {m}"] = hx["seconds"] / max(r["seconds"] or 0, 1e-9)
+                if hx.get("fidelity"):
+                    n_eq, extrapolated = at_fidelity(rows, m, n, hx["fidelity"])
+                    if n_eq:
+                        s[f"{m}/{tag} at fidelity"] = n_eq / hx["elements"]
+                        s[f"{m}/{tag} at fidelity extrapolated"] = extrapolated
+        out.append(s)
+    return out
+
+
+def plots(rows, work):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    colours = {"hexmesh": "tab:red", "hexmesh-adaptive": "tab:orange", "tetgen": "tab:blue", "tetgen-remeshed": "tab:cyan",
+               "mesh3": "tab:green"}
+    ok = [r for r in rows if r["outcome"] == "valid mesh"]
+    # elements versus h (relative to the diagonal), one line per input and mesher
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for m in MESHERS:
+        for n in sorted({r["input"] for r in ok}):
+            pts = sorted((1 / r["divisions"], r["elements"]) for r in ok if r["mesher"] == m and r["input"] == n)
+            if pts:
+                ax.plot(*zip(*pts), "o-", color=colours[m], alpha=0.5, lw=1, label=m if n == sorted({r["input"] for r in ok if r["mesher"] == m})[0] else None)
+    ax.set_xscale("log"); ax.set_yscale("log")
+    ax.set_xlabel("h / bounding-box diagonal"); ax.set_ylabel("elements"); ax.legend(); ax.grid(True, which="both", alpha=0.3)
+    ax.set_title("elements versus h (each line: one input)")
+    fig.tight_layout(); fig.savefig(os.path.join(work, "elements_vs_h.png"), dpi=90); plt.close(fig)
+    # time versus elements
+    fig, ax = plt.subplots(figsize=(7, 5))
+    for m in MESHERS:
+        pts = [(r["elements"], r["seconds"]) for r in ok if r["mesher"] == m and r.get("seconds")]
+        if pts:
+            ax.scatter(*zip(*pts), color=colours[m], label=m, s=18)
+    ax.set_xscale("log"); ax.set_yscale("log")
+    ax.set_xlabel("elements"); ax.set_ylabel("meshing seconds (one core)"); ax.legend(); ax.grid(True, which="both", alpha=0.3)
+    ax.set_title("time versus elements")
+    fig.tight_layout(); fig.savefig(os.path.join(work, "time_vs_elements.png"), dpi=90); plt.close(fig)
+    # quality histograms summed over the inputs at each mesher's runs
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4))
+    def summed(m, key):
+        tot = None
+        for r in ok:
+            if r["mesher"] == m and key in r.get("hist", {}):
+                c = r["hist"][key]["counts"]
+                tot = list(c) if tot is None else [a + b for a, b in zip(tot, c)]
+                lo, hi = r["hist"][key]["lo"], r["hist"][key]["hi"]
+        return (tot, lo, hi) if tot else (None, 0, 1)
+    for hv in ("hexmesh", "hexmesh-adaptive"):
+        tot, lo, hi = summed(hv, "scaled_jacobian")
+        if tot:
+            w = (hi - lo) / len(tot)
+            s = sum(tot)
+            axes[0].step([lo + (i + 0.5) * w for i in range(len(tot))], [c / s for c in tot], where="mid", color=colours[hv], label=hv)
+    axes[0].set_title("hexahedra: scaled Jacobian"); axes[0].set_xlabel("scaled Jacobian"); axes[0].set_ylabel("fraction of cells")
+    axes[0].set_yscale("log"); axes[0].legend()
+    for k, (key, label) in enumerate((("dihedral", "dihedral angle (degrees)"), ("radius_edge", "radius-edge ratio"))):
+        ax = axes[k + 1]
+        for m in ("tetgen", "tetgen-remeshed", "mesh3"):
+            tot, lo, hi = summed(m, key)
+            if not tot:
+                continue
+            w = (hi - lo) / len(tot)
+            s = sum(tot)
+            ax.step([lo + (i + 0.5) * w for i in range(len(tot))], [c / s for c in tot], where="mid", color=colours[m], label=m)
+        ax.set_title(f"tetrahedra: {label}"); ax.set_xlabel(label); ax.legend()
+    fig.tight_layout(); fig.savefig(os.path.join(work, "quality_histograms.png"), dpi=90); plt.close(fig)
+
+
+def fmt(x, nd=2):
+    if isinstance(x, float):
+        return f"{x:.{nd}f}"
+    return str(x)
+
+
+def tables(rows, summary, robustness, meta):
+    """markdown-ish text tables for the manual page and the README"""
+    head = ["input", "hexmesh", "hexmesh-adaptive", "mesh3", "tetgen-remeshed", "tetgen", "mesh3/hex at h",
+            "tetgen-remeshed/hex at h", "hex fidelity / h", "adaptive fidelity / h", "mesh3/adaptive at fidelity",
+            "tetgen-remeshed/adaptive at fidelity", "hex s / tetgen-remeshed s"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for s in summary:
+        def ratio(k):
+            v = s.get(k)
+            if v is None:
+                return "-"
+            return fmt(v, 1) + ("*" if s.get(k + " extrapolated") else "")
+        lines.append("| " + " | ".join([s["input"], fmt(s["hexmesh"]), fmt(s["hexmesh-adaptive"]), fmt(s["mesh3"]),
+                                         fmt(s["tetgen-remeshed"]), fmt(s["tetgen"]), ratio("mesh3/hex at h"),
+                                         ratio("tetgen-remeshed/hex at h"), fmt(s.get("hex fidelity / h", "-"), 3),
+                                         fmt(s.get("adaptive fidelity / h", "-"), 3), ratio("mesh3/adaptive at fidelity"),
+                                         ratio("tetgen-remeshed/adaptive at fidelity"),
+                                         fmt(s.get("hex seconds / tetgen-remeshed", "-"), 2)]) + " |")
+    rob_head = ["input"] + MESHERS
+    rob = ["| " + " | ".join(rob_head) + " |", "|" + "---|" * len(rob_head)]
+    for n, per in robustness.items():
+        rob.append("| " + " | ".join([n] + [per.get(m, "-") for m in MESHERS]) + " |")
+    return "\n".join(lines), "\n".join(rob)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--hexmesh", default=os.path.join(BUILD, "tools", "hexmesh", "hexmesh"))
+    ap.add_argument("--tet-baselines", default=os.path.join(BUILD, "benchmark", "Hex_meshing_3", "tet_baselines"))
+    ap.add_argument("--surface-distance", default=os.path.join(BUILD, "benchmark", "Hex_meshing_3", "surface_distance"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "out", "benchmarks"))
+    ap.add_argument("--divisions", default="40,80")
+    ap.add_argument("--only", nargs="*")
+    ap.add_argument("--meshers", default=",".join(MESHERS))
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--timeout", type=float, default=150)
+    ap.add_argument("--publish", action="store_true", help="write the manual's Benchmarks page and the README's table")
+    ap.add_argument("--reuse", action="store_true", help="reuse the runs already in --work (to redo the tables and plots)")
+    args = ap.parse_args()
+    args.meshers = [m for m in args.meshers.split(",") if m]
+    divisions = [int(x) for x in args.divisions.split(",")]
+    for tool in (args.hexmesh, args.tet_baselines, args.surface_distance):
+        if not os.path.exists(tool):
+            sys.exit(f"suite: {tool} is missing (scripts/build.sh; cmake --build build --target tet_baselines surface_distance)")
+    os.makedirs(args.work, exist_ok=True)
+    files = inputs()
+    if args.only:
+        files = {n: p for n, p in files.items() if n in args.only}
+    jobs = [(n, p, d) for d in sorted(divisions) for n, p in files.items()]
+    t0 = datetime.datetime.now()
+    rows = []
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as ex:
+        free = list(range(args.jobs))
+        futures = {}
+        pending = list(jobs)
+        while pending or futures:
+            while pending and free:
+                core = free.pop(0)
+                n, p, d = pending.pop(0)
+                futures[ex.submit(run_job, args, n, p, d, core if args.jobs > 1 else None)] = core
+            done, _ = concurrent.futures.wait(futures, return_when=concurrent.futures.FIRST_COMPLETED)
+            for f in done:
+                free.append(futures.pop(f))
+                rows += f.result()
+    rows.sort(key=lambda r: (r["input"], r["divisions"], MESHERS.index(r["mesher"])))
+    elapsed = (datetime.datetime.now() - t0).total_seconds()
+    meta = {"date": t0.strftime("%Y-%m-%d"), "machine": platform.node(), "cpu": cpu_model(), "dirty": sorted(dirty_inputs()),
+            "cores": os.cpu_count(), "jobs": args.jobs, "divisions": divisions, "suite_seconds": elapsed,
+            "inputs": {n: os.path.relpath(p, ROOT) for n, p in files.items()}}
+    with open(os.path.join(args.work, "results.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=CSV_FIELDS, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+    robustness = robustness_of(rows)
+    with open(os.path.join(args.work, "robustness.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["input"] + MESHERS)
+        for n, per in robustness.items():
+            w.writerow([n] + [per.get(m, "-") for m in MESHERS])
+    summary = summarise(rows, divisions)
+    json.dump({"meta": meta, "runs": rows, "summary": summary, "robustness": robustness},
+              open(os.path.join(args.work, "results.json"), "w"), indent=1)
+    plots(rows, args.work)
+    t_main, t_rob = tables(rows, summary, robustness, meta)
+    print()
+    print(t_main)
+    print()
+    print(t_rob)
+    print(f"\nsuite: {len(rows)} runs in {elapsed:.0f} s ({args.jobs} jobs); results in {args.work}")
+    if args.publish:
+        publish(args, rows, summary, t_main, t_rob, meta)
+
+
+def publish(args, rows, summary, t_main, t_rob, meta):
+    fig = os.path.join(ROOT, "doc", "Hex_meshing_3", "fig")
+    os.makedirs(fig, exist_ok=True)
+    for p in ("elements_vs_h.png", "time_vs_elements.png", "quality_histograms.png"):
+        shutil.copy(os.path.join(args.work, p), os.path.join(fig, "benchmark_" + p))
+    fine = max(meta["divisions"])
+    clean = [s for s in summary if s["input"] not in meta["dirty"]]
+    lines = []
+    for key, what, goal, sense in (
+            ("mesh3/hex at h", "Mesh_3 tetrahedra per hexahedron at matched h", 8, ">="),
+            ("tetgen-remeshed/hex at h", "TetGen (surface remeshed to h) tetrahedra per hexahedron at matched h", 5, ">="),
+            ("mesh3/adaptive at fidelity", "Mesh_3 tetrahedra per hexahedron of hexmesh-adaptive at its boundary fidelity", 4, ">="),
+            ("tetgen-remeshed/adaptive at fidelity", "TetGen (remeshed) tetrahedra per hexahedron of hexmesh-adaptive at its fidelity", 4, ">="),
+            ("hex seconds / tetgen-remeshed", "hexmesh seconds over TetGen's (remeshed) at matched h", 1, "<=")):
+        v = [(s[key], bool(s.get(key + " extrapolated"))) for s in clean if s.get(key) is not None]
+        if not v:
+            continue
+        met = sum(1 for x, _ in v if (x >= goal if sense == ">=" else x <= goal))
+        ext = sum(1 for _, e in v if e)
+        lines.append(f"- {what}: {min(x for x, _ in v):.1f} to {max(x for x, _ in v):.1f}; {sense} {goal} on {met} of "
+                     f"{len(v)} clean inputs" + (f" ({ext} of the {len(v)} extrapolated)" if ext else ""))
+    fids = [(s["input"], s["adaptive fidelity / h"]) for s in clean if s.get("adaptive fidelity / h") is not None]
+    if fids:
+        lines.append("- hexmesh-adaptive boundary fidelity (larger mean distance, in h): " +
+                     ", ".join(f"{n} {f:.3f}" for n, f in fids))
+    for m in MESHERS:
+        outs = [per.get(m, "-") for n, per in robustness_of(rows).items() if n in meta["dirty"]]
+        if outs:
+            counts = {o: outs.count(o) for o in sorted(set(outs))}
+            lines.append(f"- dirty inputs ({len(outs)}), {m}: " + ", ".join(f"{k} {v}" for k, v in counts.items()))
+    text = f"""/*!
+\\page hexmesh_benchmarks Benchmarks: tetrahedra versus hexahedra
+\\anchor Chapter_Hex_meshing_3_Benchmarks
+
+This page is written by `benchmark/Hex_meshing_3/suite.py --publish`; every number comes from the
+run of {meta['date']} on {meta['machine']} ({meta['cpu']}, {meta['cores']} cores, {meta['jobs']} jobs at a
+time, each pinned to one core; the whole suite took {meta['suite_seconds']:.0f} s). Rerun it to
+refresh the page. Dirty inputs (the test data's MANIFEST): {', '.join(meta['dirty'])}.
+
+\\section hexmesh_bench_setup What is compared
+Every surface of the test data, at h = bounding-box diagonal / D for D in {meta['divisions']}:
+- `hexmesh --size h --surface-size h` (hexahedra of edge h, hanging nodes allowed), and
+  `hexmesh-adaptive`: `--size 4h --surface-size h --thin-cells 3` (coarser inside, thin parts and
+  gaps refined until 3 cells span them, down to h/4), what a user would ask for;
+- TetGen 1.5 `-pq1.2/15 -a(h^3/(6 sqrt 2))` on the input's own triangles (`tetgen`) and on the
+  surface remeshed first to edge length h by CGAL's isotropic remeshing (`tetgen-remeshed`);
+- CGAL Mesh_3: edge size h, facet size h/sqrt(3), cell size h sqrt(6)/4, facet distance h/10,
+  sharp edges protected.
+Boundary fidelity is measured the same way for all: the two-sided distance between the mesh's
+boundary and the input (`surface_distance`, 10,000 area-uniform samples plus every vertex each
+way); "fidelity" is the larger of the two mean distances. "At fidelity" compares element counts
+at the hex mesh's fidelity, interpolating each tetrahedral mesher's count log-log through its runs
+(* marks an extrapolation). Seconds are meshing seconds (hexmesh: reading to writing; the
+baselines: their meshing call); peak memory is the process's, from `/usr/bin/time`.
+
+\\section hexmesh_bench_headline Headline (h = diagonal / {fine})
+{chr(10).join(lines)}
+
+\\section hexmesh_bench_table Elements, ratios and times at h = diagonal / {fine}
+{t_main}
+
+\\section hexmesh_bench_robust Robustness (worst outcome over the resolutions)
+{t_rob}
+
+\\section hexmesh_bench_figures Figures
+\\image html benchmark_elements_vs_h.png
+\\image html benchmark_time_vs_elements.png
+\\image html benchmark_quality_histograms.png
+
+The full results (every run, with quality figures and histograms) are in the run's results.csv
+and results.json.
+*/
+"""
+    open(os.path.join(ROOT, "doc", "Hex_meshing_3", "Benchmarks.txt"), "w").write(text)
+    readme = os.path.join(ROOT, "README.md")
+    s = open(readme).read()
+    block = (f"<!-- benchmarks: written by benchmark/Hex_meshing_3/suite.py --publish -->\n"
+             f"Tetrahedra versus hexahedra on the test surfaces, measured {meta['date']} on {meta['machine']} "
+             f"({meta['cores']} cores; the manual's Benchmarks page has the whole table, robustness and figures):\n\n"
+             + "\n".join(lines) + "\n<!-- /benchmarks -->")
+    if "<!-- benchmarks" in s:
+        s = re.sub(r"<!-- benchmarks.*?<!-- /benchmarks -->", lambda m: block, s, flags=re.S)
+    else:
+        s = s.rstrip("\n") + "\n\n## Benchmarks\n" + block + "\n"
+    open(readme, "w").write(s)
+    print("published: doc/Hex_meshing_3/Benchmarks.txt, doc/Hex_meshing_3/fig/benchmark_*.png, README.md")
+
+
+if __name__ == "__main__":
+    main()
