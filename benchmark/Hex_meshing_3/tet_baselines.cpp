@@ -177,6 +177,17 @@ static V cross(const V& a, const V& b) { return {{a[1] * b[2] - a[2] * b[1], a[2
 static double dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 static double norm(const V& a) { return std::sqrt(dot(a, a)); }
 
+// the JSON line is gathered here and printed once at the end, so that anything a mesher prints to
+// stdout meanwhile cannot split it
+static std::string g_json;
+template <typename... Args>
+static void out(const char* format, Args... args)
+{
+  char buf[4096];
+  std::snprintf(buf, sizeof buf, format, args...);
+  g_json += buf;
+}
+
 static std::string hist_json(const std::vector<std::size_t>& h)
 {
   std::string s = "[";
@@ -195,7 +206,7 @@ int main(int argc, char** argv)
   std::string boundary_file;
   for(int i = 4; i + 1 < argc; ++i)
     if(std::string(argv[i]) == "--boundary") boundary_file = argv[i + 1];
-  std::printf("{\"mesher\": \"%s\", \"h\": %.9g", mesher.c_str(), h);
+  out("{\"mesher\": \"%s\", \"h\": %.9g", mesher.c_str(), h);
   try {
     if(!(h > 0)) throw std::runtime_error("H must be positive");
     CGAL::Hex_meshing_3::IO::Surface_soup<Point_3> soup;
@@ -204,8 +215,8 @@ int main(int argc, char** argv)
     bool closed = true;
     if(mesher == "mesh3") {
       const Surface_mesh sm = as_mesh(soup.points, soup.triangles, closed);
-      std::printf(", \"closed_input\": %s", closed ? "true" : "false");
-      std::fflush(stdout);
+      out(", \"closed_input\": %s", closed ? "true" : "false");
+      if(!closed) std::cerr << "tet_baselines: the input is open; meshing it anyway\n";
       r = run_mesh3(sm, h);
     } else if(mesher == "tetgen") {
       std::vector<std::array<std::size_t, 3>> tris;
@@ -213,8 +224,8 @@ int main(int argc, char** argv)
       r = run_tetgen(soup.points, tris, h);
     } else if(mesher == "tetgen-remeshed") {
       Surface_mesh sm = as_mesh(soup.points, soup.triangles, closed);
-      std::printf(", \"closed_input\": %s", closed ? "true" : "false");
-      std::fflush(stdout);
+      out(", \"closed_input\": %s", closed ? "true" : "false");
+      if(!closed) std::cerr << "tet_baselines: the input is open; meshing it anyway\n";
       const auto t0 = std::chrono::steady_clock::now();
       auto eif = sm.add_property_map<Surface_mesh::Edge_index, bool>("e:sharp", false).first;
       PMP::detect_sharp_edges(sm, 60, eif);
@@ -231,7 +242,7 @@ int main(int argc, char** argv)
         for(auto v : vertices_around_face(halfedge(f, sm), sm)) if(k < 3) t[std::size_t(k++)] = vid[v];
         tris.push_back(t);
       }
-      std::printf(", \"remeshing_seconds\": %.6g, \"remeshed_triangles\": %zu", t_remesh, tris.size());
+      out(", \"remeshing_seconds\": %.6g, \"remeshed_triangles\": %zu", t_remesh, tris.size());
       r = run_tetgen(pts, tris, h);
     } else {
       throw std::runtime_error("unknown mesher '" + mesher + "'");
@@ -274,13 +285,15 @@ int main(int argc, char** argv)
       ++rer[std::size_t((std::max)(0, (std::min)(11, bin)))];
     }
     const std::size_t n = r.tets.size();
-    std::printf(", \"status\": \"ok\", \"elements\": %zu, \"vertices\": %zu, \"seconds\": %.6g, \"boundary_triangles\": %zu, "
+    out(", \"status\": \"ok\", \"elements\": %zu, \"vertices\": %zu, \"seconds\": %.6g, \"boundary_triangles\": %zu, "
                 "\"inverted\": %zu, \"longest_edge\": %.9g, \"shortest_edge\": %.9g, "
                 "\"dihedral\": {\"min\": %.6g, \"max\": %.6g, \"lo\": 0, \"hi\": 180, \"counts\": %s}, "
                 "\"radius_edge\": {\"min\": %.6g, \"mean\": %.6g, \"max\": %.6g, \"lo\": 0.6, \"hi\": 3.0, \"counts\": %s}}\n",
                 n, r.points.size(), r.seconds, r.boundary.size(), inverted, n ? emax : 0.0, n ? emin : 0.0,
                 n ? dmin : 0.0, n ? dmax : 0.0, hist_json(dih).c_str(), n ? rmin : 0.0, n ? rsum / double(n) : 0.0,
                 n ? rmax : 0.0, hist_json(rer).c_str());
+    std::fflush(stdout);
+    std::fputs(("\n" + g_json).c_str(), stdout);
     if(!boundary_file.empty()) {
       std::ofstream os(boundary_file);
       os.precision(17);
@@ -292,7 +305,9 @@ int main(int argc, char** argv)
   } catch(const std::exception& e) {
     std::string msg = e.what();
     for(char& c : msg) if(c == '"' || c == '\\' || c == '\n') c = ' ';
-    std::printf(", \"status\": \"error\", \"message\": \"%s\"}\n", msg.c_str());
+    out(", \"status\": \"error\", \"message\": \"%s\"}\n", msg.c_str());
+    std::fflush(stdout);
+    std::fputs(("\n" + g_json).c_str(), stdout);
     std::cerr << "tet_baselines: " << msg << "\n";
     return 2;
   }

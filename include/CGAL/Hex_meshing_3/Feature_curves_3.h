@@ -172,7 +172,7 @@ private:
         if(judge)
           slot_angle[3 * h.face + h.slot] = slot_angle[3 * g.face + g.slot] =
             float(std::acos((std::max)(-1.0, (std::min)(1.0, c))) * 180.0 / CGAL_PI);
-        if(o.patch_borders && !d.same_part(h.face, g.face)) kind |= PATCH_BORDER;
+        if(o.patch_borders && !d.same_part(h.face, g.face, h.forward != g.forward)) kind |= PATCH_BORDER;
       }
       if(judge && deg == 2) {
         const Half& h = half[i];

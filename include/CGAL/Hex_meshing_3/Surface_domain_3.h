@@ -150,12 +150,18 @@ public:
     const Triangle_indices& t = m_indices[i];
     return CGAL::orientation(m_points[t[0]], m_points[t[1]], m_points[t[2]], p) == CGAL::NEGATIVE ? m_back_patch[i] : m_patch[i];
   }
-  /// are triangles `i` and `j` in the same part? (two sheet faces oriented opposite ways, across a
-  /// non-manifold edge, are when each one's front part is the other's back part)
-  bool same_part(std::size_t i, std::size_t j) const
+  /*!
+   * are triangles `i` and `j`, which share an edge, in the same part? `consistent`: they run the
+   * edge in opposite directions (oriented alike). Two sheet faces are when both their sides are:
+   * front with front and back with back if oriented alike, front with back otherwise. Any other
+   * pair compares its (front) parts.
+   */
+  bool same_part(std::size_t i, std::size_t j, bool consistent = true) const
   {
-    if(m_patch[i] == m_patch[j]) return true;
-    return m_two_sided[i] && m_two_sided[j] && m_patch[i] == m_back_patch[j] && m_back_patch[i] == m_patch[j];
+    if(m_two_sided[i] && m_two_sided[j])
+      return consistent ? m_patch[i] == m_patch[j] && m_back_patch[i] == m_back_patch[j]
+                        : m_patch[i] == m_back_patch[j] && m_back_patch[i] == m_patch[j];
+    return m_patch[i] == m_patch[j];
   }
   const std::vector<std::string>& patch_names() const { return m_patch_names; }
   const std::vector<Point_3>& points() const { return m_points; }

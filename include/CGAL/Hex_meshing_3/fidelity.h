@@ -492,6 +492,13 @@ struct Box_contacts
  * thinner there than the local cells); `max_gap` is the largest distance from a filled sample to the
  * input. A hole that reaches the face's border (a body crossing the box's edge) is not a contact:
  * its area is counted in `border_area`.
+ *
+ * Known limits: where a hole's boundary and a chain reaching the border share a vertex, the loop
+ * walk may follow the chain, and that hole's area then goes to `border_area`; a meshed island
+ * inside a hole is subtracted from every hole around it (nested holes and islands are not told
+ * apart), and the centroid ignores islands. `hexmesh` tells the box patches by name after
+ * `--patch-name`: an input part named like a box face's patch, whose faces lie on that plane,
+ * would count as coverage.
  */
 template <typename HexMesh, typename PolyhedralMesh, typename Domain>
 Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const Domain& domain,
