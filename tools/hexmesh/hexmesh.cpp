@@ -703,14 +703,14 @@ int main(int argc, char** argv)
         for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
           box_patch[p] = std::find(box_patch_names.begin(), box_patch_names.end(), mesh.patch_names[p]) != box_patch_names.end();
         const HM::Box_contacts bc = HM::box_contacts(mesh, pm, domain, box_patch);
-        static const char* const box_names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+        const auto& box_names = HM::box_face_names();
         nlohmann::ordered_json jfaces = nlohmann::ordered_json::array(), jc = nlohmann::ordered_json::array();
         for(int p = 0; p < 6; ++p)
-          jfaces.push_back({{"patch", box_names[p]}, {"area", bc.face_area[std::size_t(p)]}, {"meshed_area", bc.meshed_area[std::size_t(p)]},
+          jfaces.push_back({{"patch", box_names[std::size_t(p)]}, {"area", bc.face_area[std::size_t(p)]}, {"meshed_area", bc.meshed_area[std::size_t(p)]},
                             {"unmeshed_area", bc.unmeshed_area[std::size_t(p)]}, {"unmeshed_at_border", bc.border_area[std::size_t(p)]}});
         for(std::size_t i = 0; i < bc.contacts.size() && i < 100; ++i) {
           const HM::Box_contact& c = bc.contacts[i];
-          jc.push_back({{"patch", box_names[c.patch]}, {"area", c.area}, {"body_area", c.body_area}, {"filled_area", c.filled_area},
+          jc.push_back({{"patch", box_names[std::size_t(c.patch)]}, {"area", c.area}, {"body_area", c.body_area}, {"filled_area", c.filled_area},
                         {"max_gap", c.max_gap}, {"samples", c.samples}, {"centre", loc(c.centre)},
                         {"bbox", {c.bbox.xmin(), c.bbox.ymin(), c.bbox.zmin(), c.bbox.xmax(), c.bbox.ymax(), c.bbox.zmax()}}});
         }
@@ -718,7 +718,7 @@ int main(int argc, char** argv)
         if(!quiet)
           for(std::size_t i = 0; i < bc.contacts.size() && i < 10; ++i) {
             const HM::Box_contact& c = bc.contacts[i];
-            std::cerr << "hexmesh: contact with the box face " << box_names[c.patch] << " at (" << c.centre[0] << ", " << c.centre[1]
+            std::cerr << "hexmesh: contact with the box face " << box_names[std::size_t(c.patch)] << " at (" << c.centre[0] << ", " << c.centre[1]
                       << ", " << c.centre[2] << "): " << c.area << " left out of the mesh, " << c.body_area << " inside the input, "
                       << c.filled_area << " filled (a wedge up to " << c.max_gap << " thick)\n";
           }

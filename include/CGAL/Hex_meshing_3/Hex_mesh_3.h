@@ -31,6 +31,15 @@ namespace CGAL {
 namespace Hex_meshing_3 {
 
 /// \ingroup PkgHexMeshing3Mesh
+/// \brief the names of the meshing box's faces, patches 0..5 of a mesh: xmin, xmax, ymin, ymax,
+/// zmin, zmax (face `p` is normal to axis `p / 2`, at its low end for even `p`)
+inline const std::array<const char*, 6>& box_face_names()
+{
+  static const std::array<const char*, 6> n = {{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}};
+  return n;
+}
+
+/// \ingroup PkgHexMeshing3Mesh
 /// \brief lattice offsets (x, y, z) of the 8 corners of a hexahedron in VTK order
 inline const std::array<std::array<int, 3>, 8>& hex_corner_offsets()
 {

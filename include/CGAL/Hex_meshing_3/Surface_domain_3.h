@@ -584,17 +584,18 @@ private:
   }
 
   /*
-   * The two sides of the sheets: `back[f]` is the part of face `f`'s reversed copy. Each sheet is
+   * The two sides of the sheets: `m_back_patch[f]` comes in as the part of face `f`'s reversed
+   * copy (or its own part), and goes out equal to `m_patch[f]` off the sheets. Each sheet is
    * oriented consistently across the edges it shares with exactly one other sheet face (breadth
    * first from its lowest face; a flipped face swaps its two parts), so that its front and back are
    * two coherent patches. A sheet whose copies were all in one part `NAME` gets the part
-   * `NAME_back` for its back side. Then `m_back_patch` is set (equal to `m_patch` off the sheets).
+   * `NAME_back` for its back side.
    */
   void orient_sheets(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& edges,
-                     const std::vector<std::size_t>& edge_begin, std::vector<int>& back)
+                     const std::vector<std::size_t>& edge_begin)
   {
     const std::size_t m = m_indices.size();
-    m_back_patch = m_patch;
+    for(std::size_t f = 0; f < m; ++f) if(!m_two_sided[f]) m_back_patch[f] = m_patch[f];
     if(m_summary.sheet_triangles == 0) return;
     // sheet faces across each edge met by exactly two sheet faces
     std::vector<std::vector<std::uint32_t>> nbr(m);
@@ -627,7 +628,7 @@ private:
           seen[g] = 1;
           if(same_direction(f, g)) {   // g is the other way round: flip it, its sides swap parts
             std::swap(m_indices[g][1], m_indices[g][2]);
-            std::swap(m_patch[g], back[g]);
+            std::swap(m_patch[g], m_back_patch[g]);
             ++m_summary.sheet_reoriented;
           }
           queue.push_back(g);
@@ -637,7 +638,7 @@ private:
     std::map<int, int> added;   // part -> its added back part
     for(std::size_t f = 0; f < m; ++f) {
       if(!m_two_sided[f]) continue;
-      if(back[f] != m_patch[f]) { m_back_patch[f] = back[f]; continue; }
+      if(m_back_patch[f] != m_patch[f]) continue;
       auto it = added.find(m_patch[f]);
       if(it == added.end()) {
         std::string name = m_patch_names[std::size_t(m_patch[f])] + "_back";
@@ -712,14 +713,14 @@ private:
     const std::size_t m = kept.size();
     m_indices.resize(m);
     m_patch.resize(m);
+    m_back_patch.resize(m);
     m_two_sided.assign(m, false);
     std::vector<char> candidate(m);
-    std::vector<int> back(m);
     for(std::size_t i = 0; i < m; ++i) {
       m_indices[i] = tris[kept[order[i]]];
       m_patch[i] = parts[kept[order[i]]];
       candidate[i] = had_reversed[order[i]];
-      back[i] = reversed_part[order[i]];
+      m_back_patch[i] = reversed_part[order[i]];
     }
     tris.clear(); tris.shrink_to_fit();
 
@@ -789,7 +790,7 @@ private:
         }
       for(std::size_t i = 0; i < m; ++i) uf[i] = std::uint32_t(i);
     }
-    orient_sheets(edges, edge_begin, back);
+    orient_sheets(edges, edge_begin);
 
     // 3. orientation of the one-sided faces
     std::vector<std::uint32_t> one_sided;

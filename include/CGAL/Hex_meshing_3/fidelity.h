@@ -31,7 +31,6 @@
 #include <cstdint>
 #include <limits>
 #include <map>
-#include <unordered_map>
 #include <utility>
 #include <memory>
 #include <vector>
@@ -538,20 +537,31 @@ Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const D
       const double c[3] = {CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())};
       return std::array<double, 2>{{c[ua], c[va]}};
     };
-    // meshed area (shoelace in the face's plane) and the directed edges of the patch
-    std::unordered_map<std::uint64_t, int> directed;
-    double meshed = 0;
+    typedef std::array<double, 2> P2;
+    auto twice_area = [](const std::vector<P2>& L) {   // shoelace, signed by the polygon's turn
+      double a = 0;
+      for(std::size_t k = 0; k < L.size(); ++k) a += L[k][0] * L[(k + 1) % L.size()][1] - L[k][1] * L[(k + 1) % L.size()][0];
+      return a;
+    };
+    // meshed area (in the face's plane), the patch's orientation there (its first face's turn),
+    // and the directed edges of the patch
+    std::vector<std::uint64_t> directed;
+    double meshed = 0, face_sign = 0;
     const auto& faces = on_plane[std::size_t(p)];
+    std::vector<P2> poly;
     for(std::size_t f : faces) {
       const auto& F = pm.faces[f];
-      double a = 0;
+      poly.clear();
       for(std::size_t k = 0; k < F.size(); ++k) {
-        const auto x = uv(F[k]), y = uv(F[(k + 1) % F.size()]);
-        a += x[0] * y[1] - x[1] * y[0];
-        ++directed[std::uint64_t(F[k]) << 32 | F[(k + 1) % F.size()]];
+        poly.push_back(uv(F[k]));
+        directed.push_back(std::uint64_t(F[k]) << 32 | F[(k + 1) % F.size()]);
       }
+      const double a = twice_area(poly);
+      if(f == faces.front()) face_sign = a;
       meshed += std::abs(a) / 2;
     }
+    std::sort(directed.begin(), directed.end());   // deterministic loops
+    directed.erase(std::unique(directed.begin(), directed.end()), directed.end());
     r.meshed_area[std::size_t(p)] = meshed;
     r.unmeshed_area[std::size_t(p)] = (std::max)(0.0, r.face_area[std::size_t(p)] - meshed);
     // boundary edges of the patch away from the face's border, chained into loops
@@ -559,28 +569,17 @@ Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const D
       return x[0] == lo[ua] || x[0] == hi[ua] || x[1] == lo[va] || x[1] == hi[va];
     };
     std::multimap<std::uint32_t, std::uint32_t> next;
-    std::vector<std::uint64_t> keys;
-    for(const auto& e : directed) keys.push_back(e.first);
-    std::sort(keys.begin(), keys.end());   // deterministic
-    for(std::uint64_t k : keys) {
+    for(std::uint64_t k : directed) {
       const std::uint32_t a = std::uint32_t(k >> 32), b = std::uint32_t(k & 0xffffffffu);
-      if(directed.count(std::uint64_t(b) << 32 | a)) continue;
+      if(std::binary_search(directed.begin(), directed.end(), std::uint64_t(b) << 32 | a)) continue;
       const auto xa = uv(a), xb = uv(b);
       if(on_border(xa) && on_border(xb) && (xa[0] == xb[0] || xa[1] == xb[1])) continue;   // along the border
       next.emplace(a, b);
     }
     // loops: area (signed: holes run against the patch's faces), box; chains ending on the border
     // belong to holes that reach it
-    struct Loop { std::vector<std::array<double, 2>> pts; double area; };
+    struct Loop { std::vector<P2> pts; double area; };
     std::vector<Loop> holes, islands;
-    double face_sign = 0;
-    if(!faces.empty()) {
-      const auto& F = pm.faces[faces.front()];
-      for(std::size_t k = 0; k < F.size(); ++k) {
-        const auto x = uv(F[k]), y = uv(F[(k + 1) % F.size()]);
-        face_sign += x[0] * y[1] - x[1] * y[0];
-      }
-    }
     while(!next.empty()) {
       auto it = next.begin();
       const std::uint32_t start = it->first;
@@ -595,17 +594,11 @@ Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const D
         next.erase(e);
         if(v == start) { closed = true; break; }
       }
-      double a = 0;
-      for(std::size_t k = 0; k < L.pts.size(); ++k) {
-        const auto& x = L.pts[k];
-        const auto& y = L.pts[(k + 1) % L.pts.size()];
-        a += x[0] * y[1] - x[1] * y[0];
-      }
-      L.area = a / 2;
-      if(!closed) continue;   // a chain from the border to the border: a hole reaching it
+      if(!closed) continue;
+      L.area = twice_area(L.pts) / 2;   // a chain from the border to the border: a hole reaching it
       ((L.area > 0) == (face_sign > 0) ? islands : holes).push_back(std::move(L));
     }
-    auto inside = [](const Loop& L, const std::array<double, 2>& x) {   // even-odd rule
+    auto inside = [](const Loop& L, const P2& x) {   // even-odd rule
       bool in = false;
       for(std::size_t i = 0, j = L.pts.size() - 1; i < L.pts.size(); j = i++) {
         const auto& a = L.pts[i];
@@ -617,14 +610,15 @@ Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const D
     for(Loop& H : holes) {
       Box_contact c;
       c.patch = p;
-      double ulo = H.pts[0][0], uhi = ulo, vlo = H.pts[0][1], vhi = vlo, cu = 0, cv = 0, a2 = 0;
+      double ulo = H.pts[0][0], uhi = ulo, vlo = H.pts[0][1], vhi = vlo, cu = 0, cv = 0;
       for(std::size_t k = 0; k < H.pts.size(); ++k) {
         const auto& x = H.pts[k];
         const auto& y = H.pts[(k + 1) % H.pts.size()];
         ulo = (std::min)(ulo, x[0]); uhi = (std::max)(uhi, x[0]); vlo = (std::min)(vlo, x[1]); vhi = (std::max)(vhi, x[1]);
         const double w = x[0] * y[1] - x[1] * y[0];
-        a2 += w; cu += (x[0] + y[0]) * w; cv += (x[1] + y[1]) * w;
+        cu += (x[0] + y[0]) * w; cv += (x[1] + y[1]) * w;
       }
+      const double a2 = 2 * H.area;
       c.area = std::abs(H.area);
       // the islands (meshed parts) inside this hole
       std::vector<const Loop*> inner;
@@ -646,7 +640,7 @@ Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const D
         const std::size_t nv = (std::max)(std::size_t(1), std::size_t(std::ceil((vhi - vlo) / step)));
         for(std::size_t i = 0; i < nu; ++i)
           for(std::size_t j = 0; j < nv; ++j) {
-            const std::array<double, 2> x{{ulo + (double(i) + 0.5) * (uhi - ulo) / double(nu), vlo + (double(j) + 0.5) * (vhi - vlo) / double(nv)}};
+            const P2 x{{ulo + (double(i) + 0.5) * (uhi - ulo) / double(nu), vlo + (double(j) + 0.5) * (vhi - vlo) / double(nv)}};
             bool in = inside(H, x);
             for(const Loop* I : inner) if(in && inside(*I, x)) in = false;
             if(!in) continue;

@@ -890,8 +890,7 @@ public:
     typedef typename HexMesh::Index Index;
     out.clear();
     out.box = m_box;
-    const char* box_names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
-    for(int f = 0; f < 6; ++f) out.patch_names.push_back(box_names[f]);
+    for(const char* n : box_face_names()) out.patch_names.push_back(n);
     for(const std::string& s : m_domain.patch_names()) {
       // a part named like a box face or another part gets a suffix: patch names are unique
       std::string n = s;
