@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Tet versus hex: the benchmark suite (hexmesh, TetGen raw and on a remeshed surface, CGAL Mesh_3).
+"""Tet versus hex: the benchmark suite (hexmesh, snappyHexMesh, TetGen raw and on a remeshed surface,
+CGAL Mesh_3).
 
 For every surface of the repository's test data (and of ../shared/data when present; a file of
 the same name there is preferred), at resolutions h = bounding-box diagonal / D for each D of
@@ -9,15 +10,24 @@ the same name there is preferred), at resolutions h = bounding-box diagonal / D 
                    OpenFOAM's checkMesh is installed, an OpenFOAM case judged by
                    `checkMesh -allTopology`;
   hexmesh-adaptive --size 4h --surface-size h --thin-cells 3 (the same outputs);
+  snappy           when OpenFOAM is installed, snappyHexMesh at the settings of hexmesh-adaptive
+                   (dictionaries generated from h: background cells 4h over the bounding box grown
+                   by 4h, the surface and its 30-degree feature edges at level 2 = h,
+                   resolveFeatureAngle 30, nCellsBetweenLevels 1, explicit feature snapping, no
+                   layers; locationInMesh a point found inside the input by its winding number);
+                   its seconds are snappyHexMesh's, blockMesh and surfaceFeatureExtract apart;
   tetgen           TetGen -pq1.2/15 -a(h^3/(6 sqrt 2)) on the input's triangles;
   tetgen-remeshed  the same after CGAL's isotropic remeshing of the surface to edge length h;
   mesh3            CGAL Mesh_3: edge size h, facet size h/sqrt(3), cell size h sqrt(6)/4, facet
                    distance h/10 (see tet_baselines.cpp).
 Each mesher runs as its own process under /usr/bin/time (wall seconds and peak memory of the
 process), with a timeout. Every mesh's boundary is measured against the input by the same tool
-(surface_distance: two-sided, area-uniform samples plus vertices). Failures are results: each run
-is classed valid mesh / clear error (non-zero exit with a message) / silent failure (exit 0 but no
-or an invalid mesh) / crash (killed by a signal, abort) / timeout.
+(surface_distance: two-sided, area-uniform samples plus vertices). checkMesh -allTopology judges
+every mesh that can go to OpenFOAM: hexmesh's cases, snappyHexMesh's, and the tetrahedral meshes
+after gmshToFoam (at the coarsest h only, by default: --check-tets). Failures are results: each
+run is classed valid mesh / clear error (non-zero exit with a message) / silent failure (exit 0 but
+no mesh, an invalid one, a hexmesh mesh checkMesh rejects, or a boundary farther than 4h from the
+input anywhere: a leak) / crash (killed by a signal, abort) / timeout.
 
 Two jobs (input, h) run at a time, each pinned to one core (taskset); within a job the meshers
 run one after the other on that core.
@@ -28,7 +38,7 @@ the manual's page doc/Hex_meshing_3/Benchmarks.txt (its figures in doc/Hex_meshi
 the README's headline table between its <!-- benchmarks --> markers, all from this run.
 
 Usage: benchmark/Hex_meshing_3/suite.py [--work DIR] [--divisions 40,80] [--only NAME ...]
-           [--jobs 2] [--timeout 150] [--publish] [--reuse]
+           [--jobs 2] [--timeout 150] [--check-tets coarsest|all|none] [--publish] [--reuse]
 Build first: scripts/build.sh, then cmake --build build --target tet_baselines surface_distance.
 Needs Debian's python3-meshio, python3-numpy, python3-matplotlib (/usr/bin/python3).
 """
@@ -51,11 +61,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 BUILD = os.path.join(ROOT, "build")
 DATA_DIRS = [os.path.join(ROOT, "test", "Hex_meshing_3", "data"), os.path.normpath(os.path.join(ROOT, "..", "shared", "data"))]
-MESHERS = ["hexmesh", "hexmesh-adaptive", "tetgen", "tetgen-remeshed", "mesh3"]
+MESHERS = ["hexmesh", "hexmesh-adaptive", "snappy", "tetgen", "tetgen-remeshed", "mesh3"]
 HEX_OPTIONS = {"hexmesh": lambda h: ["--size", repr(h), "--surface-size", repr(h)],
                # what a user would ask for: coarser inside, h on the surface, thin parts and gaps
                # refined until 3 cells span them (down to h/4)
                "hexmesh-adaptive": lambda h: ["--size", repr(4 * h), "--surface-size", repr(h), "--thin-cells", "3"]}
+LEAK = 4   # a boundary point farther than LEAK * h from the input: the mesh leaked (see main)
 ENV = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
 
 
@@ -98,6 +109,24 @@ def read_off_points(path):
     nv = int(toks[i])
     vals = toks[i + 3:i + 3 + 3 * nv]
     return [(float(vals[3 * k]), float(vals[3 * k + 1]), float(vals[3 * k + 2])) for k in range(nv)]
+
+
+def read_off(path):
+    """points and triangles (polygons fanned) of an OFF file"""
+    with open(path) as f:
+        toks = [t for line in f for t in line.split("#")[0].split()]
+    i = 1 if toks[0].upper() == "OFF" else 0
+    nv, nf = int(toks[i]), int(toks[i + 1])
+    k = i + 3
+    pts = [(float(toks[k + 3 * j]), float(toks[k + 3 * j + 1]), float(toks[k + 3 * j + 2])) for j in range(nv)]
+    k += 3 * nv
+    tris = []
+    for _ in range(nf):
+        n = int(toks[k])
+        f = [int(x) for x in toks[k + 1:k + 1 + n]]
+        k += 1 + n
+        tris += [(f[0], f[j], f[j + 1]) for j in range(1, n - 1)]
+    return pts, tris
 
 
 def diagonal(path):
@@ -184,14 +213,194 @@ def hex_boundary_and_edges(msh, out_obj):
     return len(hexes), len(P), longest
 
 
-def checkmesh(case):
-    if shutil.which("checkMesh") is None:
+FOAM_HEADER = "FoamFile {{ version 2.0; format ascii; class dictionary; object {}; }}\n"
+FOAM_SYSTEM = {
+    "controlDict": "application snappyHexMesh; startFrom startTime; startTime 0; stopAt endTime; endTime 1; deltaT 1;\n"
+                   "writeControl timeStep; writeInterval 1; writeFormat ascii; writePrecision 17; writeCompression off;\n"
+                   "timeFormat general; timePrecision 6; runTimeModifiable false;\n",
+    "fvSchemes": "ddtSchemes {} gradSchemes {} divSchemes {} laplacianSchemes {} interpolationSchemes {} snGradSchemes {}\n",
+    "fvSolution": "solvers {}\n",
+}
+# snappyHexMesh's quality controls: the values of the OpenFOAM tutorials' meshQualityDict
+SNAPPY_QUALITY = """meshQualityControls
+{
+    maxNonOrtho 65; maxBoundarySkewness 20; maxInternalSkewness 4; maxConcave 80; minVol 1e-13;
+    minTetQuality 1e-15; minArea -1; minTwist 0.02; minDeterminant 0.001; minFaceWeight 0.05;
+    minVolRatio 0.01; minTriangleTwist -1; nSmoothScale 4; errorReduction 0.75;
+    relaxed { maxNonOrtho 75; }
+}
+"""
+
+
+def foam_case(case, extra, binary=False):
+    """an OpenFOAM case directory with the system files every utility needs, plus `extra`
+    {name: body} in system/"""
+    os.makedirs(os.path.join(case, "system"), exist_ok=True)
+    os.makedirs(os.path.join(case, "constant"), exist_ok=True)
+    files = dict(FOAM_SYSTEM, **extra)
+    if binary:
+        files["controlDict"] = files["controlDict"].replace("writeFormat ascii", "writeFormat binary")
+    for name, body in files.items():
+        with open(os.path.join(case, "system", name), "w") as f:
+            f.write(FOAM_HEADER.format(name) + body)
+
+
+def inside_point(pts, tris, seed=1):
+    """a point well inside the input (for snappyHexMesh's locationInMesh): of candidates on a
+    jittered 12^3 lattice of the bounding box, one whose generalised winding number is above 1/2
+    (inside, also on open or inconsistent input: a floating-point estimate, as in hexmesh) and
+    whose distance to area-uniform samples of the surface is largest; None if none is inside"""
+    import numpy as np
+    P, T = np.array(pts, float), np.array(tris, int)
+    A, B, C = P[T[:, 0]], P[T[:, 1]], P[T[:, 2]]
+    lo, hi = P.min(0), P.max(0)
+    rng = np.random.default_rng(seed)
+    g = (np.stack(np.meshgrid(*[np.arange(12)] * 3, indexing="ij"), -1).reshape(-1, 3) + 0.5
+         + rng.uniform(-0.3, 0.3, (12 ** 3, 3))) / 12
+    Q = lo + g * (hi - lo)
+    w = np.zeros(len(Q))
+    for k in range(0, len(Q), 64):   # Van Oosterom and Strackee's solid angle, summed over triangles
+        a, b, c = A[None] - Q[k:k + 64, None], B[None] - Q[k:k + 64, None], C[None] - Q[k:k + 64, None]
+        la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
+        num = np.einsum("ijk,ijk->ij", a, np.cross(b, c))
+        den = la * lb * lc + np.einsum("ijk,ijk->ij", a, b) * lc + np.einsum("ijk,ijk->ij", b, c) * la \
+            + np.einsum("ijk,ijk->ij", c, a) * lb
+        w[k:k + 64] = np.arctan2(num, den).sum(1) / (2 * np.pi)
+    inside = Q[np.abs(w) > 0.5]
+    if not len(inside):
         return None
+    area = np.linalg.norm(np.cross(B - A, C - A), axis=1)
+    pick = rng.choice(len(T), 20000, p=area / area.sum())
+    u, v = rng.random(20000), rng.random(20000)
+    flip = u + v > 1
+    u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
+    S = np.concatenate([A[pick] + u[:, None] * (B - A)[pick] + v[:, None] * (C - A)[pick], P])
+    d = np.array([np.min(np.linalg.norm(S - q, axis=1)) for q in inside])
+    return tuple(float(x) for x in inside[np.argmax(d)])
+
+
+def checkmesh_figures(case, env=None):
+    """checkMesh -allTopology on a case: verdict, cells, points, hexahedra, tetrahedra, max
+    non-orthogonality, max skewness"""
     r = subprocess.run(["checkMesh", "-case", case, "-allTopology"], capture_output=True, text=True, env=ENV)
-    if "Mesh OK" in r.stdout:
-        return "Mesh OK"
-    m = re.search(r"Failed (\d+) mesh checks", r.stdout)
-    return f"Failed {m.group(1)}" if m else "no verdict"
+    s = r.stdout
+    m = re.search(r"Failed (\d+) mesh checks", s)
+    out = {"checkMesh": "Mesh OK" if "Mesh OK" in s else f"Failed {m.group(1)}" if m else "no verdict",
+           "checkMesh_flags": " ".join(l.strip() for l in s.splitlines() if l.strip().startswith("***"))[:300]}
+    for key, pat, conv in (("cells", r"^\s*cells:\s+(\d+)", int), ("points", r"^\s*points:\s+(\d+)", int),
+                           ("hexahedra", r"^\s*hexahedra:\s+(\d+)", int), ("tetrahedra", r"^\s*tetrahedra:\s+(\d+)", int),
+                           ("max_non_orthogonality", r"Mesh non-orthogonality Max: ([0-9.eE+-]+)", float),
+                           ("max_skewness", r"Max skewness = ([0-9.eE+-]+)", float)):
+        m = re.search(pat, s, re.M)
+        if m:
+            out[key] = conv(m.group(1))
+    return out
+
+
+def poly_longest_edge(case):
+    """the longest edge of an ASCII polyMesh's faces"""
+    import numpy as np
+    poly = os.path.join(case, "constant", "polyMesh")
+    def body(name):
+        t = open(os.path.join(poly, name)).read()
+        return t[t.index("}", t.index("FoamFile")) + 1:]
+    P = np.array([[float(x) for x in t.split()] for t in re.findall(r"\(([^()]*)\)", body("points"))])
+    longest = 0.0
+    for t in re.findall(r"\d+\(([^()]*)\)", body("faces")):
+        f = [int(x) for x in t.split()]
+        q = P[f]
+        longest = max(longest, float(np.max(np.linalg.norm(q - np.roll(q, 1, axis=0), axis=1))))
+    return longest
+
+
+def snappy_dicts(pts, h, location):
+    """blockMeshDict, surfaceFeatureExtractDict and snappyHexMeshDict matching hexmesh-adaptive:
+    background cells of 4h over the bounding box grown by one such cell, the surface and its feature
+    edges (30 degrees) refined twice (to h), resolveFeatureAngle 30, one cell between levels (hexmesh's
+    default), explicit feature snapping, no layers"""
+    b = 4 * h
+    lo = [min(p[k] for p in pts) - b for k in range(3)]
+    hi = [max(p[k] for p in pts) + b for k in range(3)]
+    n = [max(1, math.ceil((hi[k] - lo[k]) / b)) for k in range(3)]
+    hi = [lo[k] + n[k] * b for k in range(3)]
+    v = " ".join("(%r %r %r)" % (x, y, z) for z in (lo[2], hi[2]) for (x, y) in
+                 ((lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])))
+    block = (f"convertToMeters 1;\nvertices ({v});\nblocks (hex (0 1 2 3 4 5 6 7) ({n[0]} {n[1]} {n[2]}) simpleGrading (1 1 1));\n"
+             "edges ();\nboundary ( box { type patch; faces ((0 3 2 1) (4 5 6 7) (0 1 5 4) (2 3 7 6) (1 2 6 5) (3 0 4 7)); } );\n"
+             "mergePatchPairs ();\n")
+    feature = ("body.obj { extractionMethod extractFromSurface; extractFromSurfaceCoeffs { includedAngle 150; }\n"
+               "  subsetFeatures { nonManifoldEdges yes; openEdges yes; } writeObj no; }\n")
+    snappy = f"""castellatedMesh true; snap true; addLayers false;
+geometry {{ body.obj {{ type triSurfaceMesh; name body; }} }}
+castellatedMeshControls
+{{
+    maxLocalCells 10000000; maxGlobalCells 50000000; minRefinementCells 0; maxLoadUnbalance 0.1;
+    nCellsBetweenLevels 1;
+    features ( {{ file "body.eMesh"; level 2; }} );
+    refinementSurfaces {{ body {{ level (2 2); }} }}
+    resolveFeatureAngle 30;
+    refinementRegions {{}}
+    locationInMesh ({location[0]!r} {location[1]!r} {location[2]!r});
+    allowFreeStandingZoneFaces true;
+}}
+snapControls
+{{
+    nSmoothPatch 3; tolerance 2.0; nSolveIter 30; nRelaxIter 5;
+    nFeatureSnapIter 10; implicitFeatureSnap false; explicitFeatureSnap true; multiRegionFeatureSnap false;
+}}
+addLayersControls
+{{
+    relativeSizes true; layers {{}} expansionRatio 1.0; finalLayerThickness 0.3; minThickness 0.1; nGrow 0;
+    featureAngle 60; slipFeatureAngle 30; nRelaxIter 3; nSmoothSurfaceNormals 1; nSmoothNormals 3;
+    nSmoothThickness 10; maxFaceThicknessRatio 0.5; maxThicknessToMedialRatio 0.3; minMedialAxisAngle 90;
+    nBufferCellsNoExtrude 0; nLayerIter 50;
+}}
+{SNAPPY_QUALITY}
+mergeTolerance 1e-6;
+"""
+    return {"blockMeshDict": block, "surfaceFeatureExtractDict": feature, "snappyHexMeshDict": snappy}
+
+
+def run_snappy(args, path, h, wd, core, row):
+    """snappyHexMesh at settings matching hexmesh-adaptive (snappy_dicts); its wall seconds and peak
+    memory are snappyHexMesh's, blockMesh's and surfaceFeatureExtract's seconds are recorded apart.
+    Returns (exit code, wall, MiB, stderr, elements, valid)"""
+    case = os.path.join(wd, "snappy_case")
+    shutil.rmtree(case, ignore_errors=True)
+    pts, tris = read_off(path)
+    location = inside_point(pts, tris)
+    if location is None:
+        return 2, None, None, "suite: no point found inside the input for locationInMesh", 0, False
+    foam_case(case, snappy_dicts(pts, h, location))
+    os.makedirs(os.path.join(case, "constant", "triSurface"))
+    with open(os.path.join(case, "constant", "triSurface", "body.obj"), "w") as f:
+        f.writelines("v %.17g %.17g %.17g\n" % p for p in pts)
+        f.writelines("f %d %d %d\n" % (a + 1, b + 1, c + 1) for a, b, c in tris)
+    row["location_in_mesh"] = location
+    for tool in ("blockMesh", "surfaceFeatureExtract"):
+        rc, wall, _, _, err = timed([tool, "-case", case], core, args.timeout, os.path.join(wd, f"snappy_{tool}.log"))
+        row[f"{tool}_seconds"] = wall
+        if rc != 0:
+            return rc, wall, None, err or f"{tool} failed", 0, False
+    rc, wall, mib, out, err = timed(["snappyHexMesh", "-case", case, "-overwrite"], core, args.timeout,
+                                    os.path.join(wd, "snappy.log"))
+    if rc != 0:
+        # OpenFOAM prints its fatal errors on stdout
+        fatal = [l.strip() for l in (out or "").splitlines() if l.strip()][-6:]
+        return rc, wall, mib, err or " ".join(fatal), 0, False
+    cm = checkmesh_figures(case)
+    elements = cm.get("cells", 0)
+    row.update({"elements": elements, "vertices": cm.get("points"), "seconds": wall, "checkMesh": cm["checkMesh"],
+                "checkMesh_flags": cm["checkMesh_flags"],
+                "hex_fraction": (cm.get("hexahedra", 0) / elements) if elements else None,
+                "max_non_orthogonality": cm.get("max_non_orthogonality"), "max_skewness": cm.get("max_skewness")})
+    if elements:
+        row["longest_edge"] = poly_longest_edge(case)
+        obj = os.path.join(wd, "snappy_boundary.obj")
+        subprocess.run(["foamToSurface", "-case", case, "-tri", obj], capture_output=True, env=ENV)
+        if os.path.exists(obj):
+            row["boundary"] = obj
+    return rc, wall, mib, err, elements, elements > 0
 
 
 def run_job(args, name, path, div, core):
@@ -233,10 +442,19 @@ def run_job(args, name, path, div, core):
                 except Exception as e:
                     row["message"] = f"reading the MSH back failed: {e!r}"[:200]
                 if os.path.isdir(case):
-                    row["checkMesh"] = checkmesh(case)
+                    cm = checkmesh_figures(case)
+                    row["checkMesh"], row["checkMesh_flags"] = cm["checkMesh"], cm["checkMesh_flags"]
+        elif mesher == "snappy":
+            rc, wall, mib, err, elements, valid = run_snappy(args, path, h, wd, core, row)
         else:
             off = os.path.join(wd, mesher + "_boundary.off")
-            rc, wall, mib, out, err = timed([args.tet_baselines, mesher, path, repr(h), "--boundary", off], core, args.timeout, log)
+            msh = os.path.join(wd, mesher + ".msh")
+            # checkMesh on the tetrahedra at the coarsest h only (--check-tets): at the finest, the
+            # conversion and the check of up to a few million tetrahedra would double the suite's time
+            check = (shutil.which("checkMesh") is not None and shutil.which("gmshToFoam") is not None
+                     and (args.check_tets == "all" or (args.check_tets == "coarsest" and div == min(args.division_list))))
+            rc, wall, mib, out, err = timed([args.tet_baselines, mesher, path, repr(h), "--boundary", off]
+                                            + (["--msh", msh] if check else []), core, args.timeout, log)
             elements, valid = 0, False
             try:
                 j = json.loads(out.strip().splitlines()[-1]) if out.strip() else {}
@@ -254,6 +472,23 @@ def run_job(args, name, path, div, core):
                                      "radius_edge": {k: j["radius_edge"][k] for k in ("lo", "hi", "counts")}}})
                 if elements:
                     row["boundary"] = off
+                if elements and check and os.path.exists(msh):
+                    # the same judge as for the hexahedra: OpenFOAM's own conversion, then checkMesh
+                    case = os.path.join(wd, mesher + "_case")
+                    shutil.rmtree(case, ignore_errors=True)
+                    foam_case(case, {}, binary=True)
+                    t_check = datetime.datetime.now()
+                    g = subprocess.run(["gmshToFoam", "-case", case, msh], capture_output=True, text=True, env=ENV)
+                    if g.returncode == 0:
+                        cm = checkmesh_figures(case)
+                        row.update({"checkMesh": cm["checkMesh"], "checkMesh_flags": cm["checkMesh_flags"],
+                                    "max_non_orthogonality": cm.get("max_non_orthogonality"),
+                                    "max_skewness": cm.get("max_skewness")})
+                    else:
+                        row["checkMesh"] = "gmshToFoam failed"
+                    row["check_seconds"] = (datetime.datetime.now() - t_check).total_seconds()
+                    shutil.rmtree(case, ignore_errors=True)
+                    os.remove(msh)
             elif j.get("message"):
                 row["message"] = j["message"]
         row.update({"exit": rc, "wall_seconds": wall, "peak_MiB": mib})
@@ -277,7 +512,8 @@ def run_job(args, name, path, div, core):
 CSV_FIELDS = ["input", "divisions", "h", "mesher", "outcome", "exit", "elements", "vertices", "seconds", "wall_seconds",
               "peak_MiB", "longest_edge", "quality_min", "sj_mean", "max_non_orthogonality", "max_skewness", "max_dihedral",
               "max_radius_edge", "mean_radius_edge", "mesh_to_input_mean", "mesh_to_input_max", "input_to_mesh_mean",
-              "input_to_mesh_max", "fidelity", "checkMesh", "remeshing_seconds", "remeshed_triangles", "message"]
+              "input_to_mesh_max", "fidelity", "checkMesh", "checkMesh_flags", "check_seconds", "hex_fraction", "blockMesh_seconds",
+              "surfaceFeatureExtract_seconds", "location_in_mesh", "remeshing_seconds", "remeshed_triangles", "message"]
 
 
 def robustness_of(rows):
@@ -326,7 +562,7 @@ def summarise(rows, divisions):
                 continue
             if "fidelity" in hx:
                 s[f"{tag} fidelity / h"] = hx["fidelity"] / hx["h"]
-            for m in ("mesh3", "tetgen-remeshed", "tetgen"):
+            for m in ("mesh3", "tetgen-remeshed", "tetgen", "snappy"):
                 r = by.get(m)
                 if r and r["outcome"] == "valid mesh":
                     s[f"{m}/{tag} at h"] = r["elements"] / hx["elements"]
@@ -336,6 +572,9 @@ def summarise(rows, divisions):
                     if n_eq:
                         s[f"{m}/{tag} at fidelity"] = n_eq / hx["elements"]
                         s[f"{m}/{tag} at fidelity extrapolated"] = extrapolated
+        sn = by.get("snappy")
+        if sn and sn["outcome"] == "valid mesh" and "fidelity" in sn:
+            s["snappy fidelity / h"] = sn["fidelity"] / sn["h"]
         out.append(s)
     return out
 
@@ -345,7 +584,7 @@ def plots(rows, work):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     colours = {"hexmesh": "tab:red", "hexmesh-adaptive": "tab:orange", "tetgen": "tab:blue", "tetgen-remeshed": "tab:cyan",
-               "mesh3": "tab:green"}
+               "mesh3": "tab:green", "snappy": "tab:purple"}
     ok = [r for r in rows if r["outcome"] == "valid mesh"]
     # elements versus h (relative to the diagonal), one line per input and mesher
     fig, ax = plt.subplots(figsize=(7, 5))
@@ -407,9 +646,10 @@ def fmt(x, nd=2):
 
 def tables(rows, summary, robustness, meta):
     """markdown-ish text tables for the manual page and the README"""
-    head = ["input", "hexmesh", "hexmesh-adaptive", "mesh3", "tetgen-remeshed", "tetgen", "mesh3/hex at h",
-            "tetgen-remeshed/hex at h", "hex fidelity / h", "adaptive fidelity / h", "mesh3/adaptive at fidelity",
-            "tetgen-remeshed/adaptive at fidelity", "hex s / tetgen-remeshed s"]
+    head = ["input", "hexmesh", "hexmesh-adaptive", "snappy", "mesh3", "tetgen-remeshed", "tetgen", "mesh3/hex at h",
+            "tetgen-remeshed/hex at h", "hex fidelity / h", "adaptive fidelity / h", "snappy fidelity / h",
+            "mesh3/adaptive at fidelity", "tetgen-remeshed/adaptive at fidelity", "hex s / tetgen-remeshed s",
+            "adaptive s / snappy s"]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for s in summary:
         def ratio(k):
@@ -417,12 +657,13 @@ def tables(rows, summary, robustness, meta):
             if v is None:
                 return "-"
             return fmt(v, 1) + ("*" if s.get(k + " extrapolated") else "")
-        lines.append("| " + " | ".join([s["input"], fmt(s["hexmesh"]), fmt(s["hexmesh-adaptive"]), fmt(s["mesh3"]),
-                                         fmt(s["tetgen-remeshed"]), fmt(s["tetgen"]), ratio("mesh3/hex at h"),
+        lines.append("| " + " | ".join([s["input"], fmt(s["hexmesh"]), fmt(s["hexmesh-adaptive"]), fmt(s["snappy"]),
+                                         fmt(s["mesh3"]), fmt(s["tetgen-remeshed"]), fmt(s["tetgen"]), ratio("mesh3/hex at h"),
                                          ratio("tetgen-remeshed/hex at h"), fmt(s.get("hex fidelity / h", "-"), 3),
-                                         fmt(s.get("adaptive fidelity / h", "-"), 3), ratio("mesh3/adaptive at fidelity"),
-                                         ratio("tetgen-remeshed/adaptive at fidelity"),
-                                         fmt(s.get("hex seconds / tetgen-remeshed", "-"), 2)]) + " |")
+                                         fmt(s.get("adaptive fidelity / h", "-"), 3), fmt(s.get("snappy fidelity / h", "-"), 3),
+                                         ratio("mesh3/adaptive at fidelity"), ratio("tetgen-remeshed/adaptive at fidelity"),
+                                         fmt(s.get("hex seconds / tetgen-remeshed", "-"), 2),
+                                         fmt(s.get("adaptive seconds / snappy", "-"), 2)]) + " |")
     rob_head = ["input"] + MESHERS
     rob = ["| " + " | ".join(rob_head) + " |", "|" + "---|" * len(rob_head)]
     for n, per in robustness.items():
@@ -440,12 +681,19 @@ def main():
     ap.add_argument("--only", nargs="*")
     ap.add_argument("--meshers", default=",".join(MESHERS))
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--check-tets", choices=["coarsest", "all", "none"], default="coarsest",
+                    help="where the tetrahedral meshes go through gmshToFoam and checkMesh (default: at the coarsest h)")
     ap.add_argument("--timeout", type=float, default=150)
     ap.add_argument("--publish", action="store_true", help="write the manual's Benchmarks page and the README's table")
     ap.add_argument("--reuse", action="store_true", help="reuse the runs already in --work (to redo the tables and plots)")
     args = ap.parse_args()
     args.meshers = [m for m in args.meshers.split(",") if m]
+    if "snappy" in args.meshers and not all(shutil.which(t) for t in ("blockMesh", "surfaceFeatureExtract", "snappyHexMesh",
+                                                                       "checkMesh", "foamToSurface")):
+        print("suite: OpenFOAM is not installed; snappyHexMesh left out", flush=True)
+        args.meshers.remove("snappy")
     divisions = [int(x) for x in args.divisions.split(",")]
+    args.division_list = divisions
     for tool in (args.hexmesh, args.tet_baselines, args.surface_distance):
         if not os.path.exists(tool):
             sys.exit(f"suite: {tool} is missing (scripts/build.sh; cmake --build build --target tet_baselines surface_distance)")
@@ -473,9 +721,18 @@ def main():
                 except Exception as e:   # a broken measurement is a result, not the end of the suite
                     print(f"  suite: a job failed: {e!r}", flush=True)
     rows.sort(key=lambda r: (r["input"], r["divisions"], MESHERS.index(r["mesher"])))
-    for r in rows:   # a mesh OpenFOAM's checkMesh rejects is not a valid mesh
-        if r["outcome"] == "valid mesh" and r.get("checkMesh") not in (None, "Mesh OK"):
+    for r in rows:
+        if r["outcome"] != "valid mesh":
+            continue
+        # a hex mesh of ours that OpenFOAM's checkMesh rejects is not a valid mesh
+        if r["mesher"] in HEX_OPTIONS and r.get("checkMesh") not in (None, "Mesh OK"):
             r["outcome"] = "silent failure"
+            r["message"] = f"checkMesh: {r['checkMesh']}"
+        # nor, for any mesher, one whose boundary goes farther than 4h from the input: a mesh that
+        # leaked out through a hole (snappyHexMesh then meshes its background box, at 4h from the input)
+        elif r.get("mesh_to_input_max") is not None and r["mesh_to_input_max"] > LEAK * r["h"]:
+            r["outcome"] = "silent failure"
+            r["message"] = f"the boundary goes {r['mesh_to_input_max'] / r['h']:.1f} h away from the input (a leak)"
     elapsed = (datetime.datetime.now() - t0).total_seconds()
     meta = {"date": t0.strftime("%Y-%m-%d"), "machine": platform.node(), "cpu": cpu_model(), "dirty": sorted(dirty_inputs()),
             "cores": os.cpu_count(), "jobs": args.jobs, "divisions": divisions, "suite_seconds": elapsed,
@@ -526,10 +783,16 @@ def publish(args, rows, summary, t_main, t_rob, meta):
             ("tetgen-remeshed/hex at h", "TetGen (surface remeshed to h) tetrahedra per hexahedron at matched h", 5, ">="),
             ("mesh3/adaptive at fidelity", "Mesh_3 tetrahedra per hexahedron of hexmesh-adaptive at its boundary fidelity", 4, ">="),
             ("tetgen-remeshed/adaptive at fidelity", "TetGen (remeshed) tetrahedra per hexahedron of hexmesh-adaptive at its fidelity", 4, ">="),
-            ("hex seconds / tetgen-remeshed", "hexmesh seconds over TetGen's (remeshed) at matched h", 1, "<=")):
+            ("hex seconds / tetgen-remeshed", "hexmesh seconds over TetGen's (remeshed) at matched h", 1, "<="),
+            ("snappy/adaptive at h", "snappyHexMesh cells per hexmesh-adaptive cell at the same settings", None, None),
+            ("snappy/adaptive at fidelity", "snappyHexMesh cells per hexmesh-adaptive cell at hexmesh-adaptive's fidelity", None, None),
+            ("adaptive seconds / snappy", "hexmesh-adaptive seconds over snappyHexMesh's at the same settings", None, None)):
         # matched h: only where the uniform hex mesh keeps the shape (fidelity <= h/2); at
         # fidelity: interpolated values only (extrapolations are in the table, marked *)
-        if key.endswith("at h") or key.startswith("hex seconds"):
+        if goal is None:
+            pool = [s for s in clean if not s.get(key + " extrapolated")]
+            scope = "clean inputs" + (" with an interpolated value" if "fidelity" in key else " where both gave a valid mesh")
+        elif key.endswith("at h") or key.startswith("hex seconds"):
             pool = [s for s in clean if s.get("hex fidelity / h") is not None and s["hex fidelity / h"] <= 0.5]
             scope = "clean inputs where hexmesh's fidelity is within h/2"
         else:
@@ -539,12 +802,19 @@ def publish(args, rows, summary, t_main, t_rob, meta):
         if not v:
             lines.append(f"- {what}: no {scope}")
             continue
+        if goal is None:
+            lines.append(f"- {what}: {min(v):.2f} to {max(v):.2f} (median {sorted(v)[len(v) // 2]:.2f}) on {len(v)} {scope}")
+            continue
         met = sum(1 for x in v if (x >= goal if sense == ">=" else x <= goal))
         lines.append(f"- {what}: {min(v):.1f} to {max(v):.1f}; {sense} {goal} on {met} of {len(v)} {scope}")
     fids = [(s["input"], s["adaptive fidelity / h"]) for s in clean if s.get("adaptive fidelity / h") is not None]
     if fids:
         lines.append("- hexmesh-adaptive boundary fidelity (larger mean distance, in h): " +
                      ", ".join(f"{n} {f:.3f}" for n, f in fids))
+    for m in MESHERS:
+        verdicts = [r["checkMesh"] for r in rows if r["mesher"] == m and r.get("checkMesh")]
+        if verdicts:
+            lines.append(f"- checkMesh -allTopology, {m}: Mesh OK on {verdicts.count('Mesh OK')} of {len(verdicts)} meshes checked")
     for m in MESHERS:
         outs = [per.get(m, "-") for n, per in robustness_of(rows).items() if n in meta["dirty"]]
         if outs:
@@ -567,7 +837,16 @@ Every surface of the test data, at h = bounding-box diagonal / D for D in {meta[
 - TetGen 1.5 `-pq1.2/15 -a(h^3/(6 sqrt 2))` on the input's own triangles (`tetgen`) and on the
   surface remeshed first to edge length h by CGAL's isotropic remeshing (`tetgen-remeshed`);
 - CGAL Mesh_3: edge size h, facet size h/sqrt(3), cell size h sqrt(6)/4, facet distance h/10,
-  sharp edges protected.
+  sharp edges protected;
+- snappyHexMesh (OpenFOAM v1912, `snappy`) at the settings of `hexmesh-adaptive`, from dictionaries
+  the suite generates from h: background cells of 4h over the bounding box grown by 4h, the surface
+  and its feature edges (surfaceFeatureExtract, included angle 150 degrees) at level 2 (h),
+  resolveFeatureAngle 30, nCellsBetweenLevels 1, explicit feature snapping, no layers, the
+  tutorials' mesh-quality controls; locationInMesh is a point inside the input (winding number
+  above 1/2, farthest from the surface of a 12^3 lattice), so it meshes the one region holding
+  it. Its seconds are snappyHexMesh's; blockMesh and surfaceFeatureExtract are recorded apart
+  (results.csv). Its cells are polyhedra where it splits hexahedra (hex_fraction in results.csv);
+  no thin-part refinement (hexmesh-adaptive's `--thin-cells 3` has no counterpart in v1912).
 Boundary fidelity is measured the same way for all: the two-sided distance between the mesh's
 boundary and the input (`surface_distance`, 10,000 area-uniform samples plus every vertex each
 way); "fidelity" is the larger of the two mean distances. "At fidelity" compares element counts
@@ -579,8 +858,13 @@ which `hexmesh-adaptive` refines), and its at-fidelity ratios the extrapolated v
 meshing seconds. They are not quite alike: hexmesh's are from reading to writing, including its
 quality measures and two outputs (MSH and, with OpenFOAM, a case); the baselines' are their
 meshing call only, without reading, measuring, writing or (for `tetgen-remeshed`) the remeshing.
-Peak memory is the process's, from `/usr/bin/time`. A hex mesh that checkMesh rejects counts as a
-silent failure.
+Peak memory is the process's, from `/usr/bin/time`. OpenFOAM's `checkMesh -allTopology` judges
+every mesh that can be exported to OpenFOAM: hexmesh's cases, snappyHexMesh's, and the tetrahedral
+meshes converted by `gmshToFoam` (at the coarsest h only: converting and checking millions of
+tetrahedra at the finest would double the suite's time; `--check-tets all` does it everywhere).
+A hexmesh mesh that checkMesh rejects counts as a silent failure, and so does, for every mesher, a
+mesh whose boundary goes farther than 4h from the input anywhere (a leak through a hole: then
+snappyHexMesh meshes its background box).
 
 \\section hexmesh_bench_headline Headline (h = diagonal / {fine})
 {chr(10).join(lines)}

@@ -3,7 +3,7 @@
 // (links TetGen 1.5, AGPL-3.0: this program is benchmark code only, never part of the package)
 // Author(s)     : Hex_meshing_3 developers
 //
-// tet_baselines MESHER INPUT H [--boundary OUT.off]
+// tet_baselines MESHER INPUT H [--boundary OUT.off] [--msh OUT.msh]
 //
 // The tetrahedral baselines of the benchmark suite, at the resolution H (an edge length):
 //   mesh3            CGAL Mesh_3 on the input as a polyhedral domain with its sharp edges (60
@@ -21,7 +21,9 @@
 // and shortest edge, dihedral angles (min, max, histogram over [0, 180] in 18 bins), radius-edge
 // ratio (circumradius over shortest edge: min, mean, max, histogram over [0.6, 3.0] in 12 bins,
 // last bin open), boundary triangles; with --boundary, writes the boundary triangles as OFF (the
-// suite measures every mesher's boundary against the input with the same tool). Exit codes: 0 a
+// suite measures every mesher's boundary against the input with the same tool); with --msh, writes
+// the tetrahedra as Gmsh MSH 2.2 (ASCII; the suite converts it with OpenFOAM's gmshToFoam and
+// judges it with checkMesh, as it does the hexahedral meshes). Exit codes: 0 a
 // mesh (possibly empty: "elements": 0 is a silent failure of the mesher, reported as such), 2 a
 // clear error (unreadable input, not a closed polygon mesh where one is needed, an exception).
 #define TETLIBRARY
@@ -198,14 +200,16 @@ static std::string hist_json(const std::vector<std::size_t>& h)
 int main(int argc, char** argv)
 {
   if(argc < 4) {
-    std::cerr << "usage: tet_baselines mesh3|tetgen|tetgen-remeshed INPUT H [--boundary OUT.off]\n";
+    std::cerr << "usage: tet_baselines mesh3|tetgen|tetgen-remeshed INPUT H [--boundary OUT.off] [--msh OUT.msh]\n";
     return 1;
   }
   const std::string mesher = argv[1], input = argv[2];
   const double h = std::atof(argv[3]);
-  std::string boundary_file;
-  for(int i = 4; i + 1 < argc; ++i)
+  std::string boundary_file, msh_file;
+  for(int i = 4; i + 1 < argc; ++i) {
     if(std::string(argv[i]) == "--boundary") boundary_file = argv[i + 1];
+    if(std::string(argv[i]) == "--msh") msh_file = argv[i + 1];
+  }
   out("{\"mesher\": \"%s\", \"h\": %.9g", mesher.c_str(), h);
   try {
     if(!(h > 0)) throw std::runtime_error("H must be positive");
@@ -300,6 +304,27 @@ int main(int argc, char** argv)
       os << "OFF\n" << r.points.size() << " " << r.boundary.size() << " 0\n";
       for(const auto& p : r.points) os << p[0] << " " << p[1] << " " << p[2] << "\n";
       for(const auto& t : r.boundary) os << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+    }
+    if(!msh_file.empty() && n) {
+      // Gmsh's tetrahedron (type 4) has the orientation counted as valid above; no boundary
+      // elements: gmshToFoam puts the exposed faces into one patch. Only the tetrahedra's points
+      // (Mesh_3 may have surface facets with no tetrahedron on either side, on parts thinner
+      // than its sizes: their points are not the volume mesh's)
+      std::vector<std::size_t> used(r.points.size(), 0);
+      for(const auto& t : r.tets) for(std::size_t v : t) used[v] = 1;
+      std::size_t m = 0;
+      for(auto& u : used) u = u ? ++m : 0;
+      std::ofstream os(msh_file);
+      os.precision(17);
+      os << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << m << "\n";
+      for(std::size_t i = 0; i < r.points.size(); ++i)
+        if(used[i]) os << used[i] << " " << r.points[i][0] << " " << r.points[i][1] << " " << r.points[i][2] << "\n";
+      os << "$EndNodes\n$Elements\n" << n << "\n";
+      for(std::size_t i = 0; i < n; ++i) {
+        const auto& t = r.tets[i];
+        os << i + 1 << " 4 2 1 1 " << used[t[0]] << " " << used[t[1]] << " " << used[t[2]] << " " << used[t[3]] << "\n";
+      }
+      os << "$EndElements\n";
     }
     return 0;
   } catch(const std::exception& e) {
