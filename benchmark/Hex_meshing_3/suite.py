@@ -851,8 +851,9 @@ def publish(args, rows, summary, t_main, t_rob, meta):
         if goal is None:
             # both meshes keep the shape (fidelity within h/2: not where snappyHexMesh lost the
             # rotor's blades or either lost fin_slot's slot)
+            keeps = lambda s, k: s.get(k) is not None and s[k] <= 0.5
             pool = [s for s in clean if not s.get(key + " extrapolated")
-                    and (s.get("snappy fidelity / h") or 9) <= 0.5 and (s.get("adaptive fidelity / h") or 9) <= 0.5]
+                    and keeps(s, "snappy fidelity / h") and keeps(s, "adaptive fidelity / h")]
             scope = "clean inputs where both keep the shape (fidelity within h/2)" + (", interpolated" if "fidelity" in key else "")
         elif key.endswith("at h") or key.startswith("hex seconds"):
             pool = [s for s in clean if s.get("hex fidelity / h") is not None and s["hex fidelity / h"] <= 0.5]
