@@ -968,7 +968,7 @@ and results.json.
     readme = os.path.join(ROOT, "README.md")
     s = open(readme).read()
     block = (f"<!-- benchmarks: written by benchmark/Hex_meshing_3/suite.py --publish -->\n"
-             f"Tetrahedra versus hexahedra on the test surfaces, measured {meta['date']} on {meta['machine']} "
+             f"Tetrahedra versus hexahedra, and snappyHexMesh beside them, on the test surfaces, measured {meta['date']} on {meta['machine']} "
              f"({meta['cores']} cores; the manual's Benchmarks page has the whole table, robustness and figures):\n\n"
              + "\n".join(lines) + "\n<!-- /benchmarks -->")
     if "<!-- benchmarks" in s:
