@@ -107,15 +107,6 @@ def cpu_model():
     return platform.processor() or platform.machine()
 
 
-def read_off_points(path):
-    with open(path) as f:
-        toks = [t for line in f for t in line.split("#")[0].split()]
-    i = 1 if toks[0].upper() == "OFF" else 0
-    nv = int(toks[i])
-    vals = toks[i + 3:i + 3 + 3 * nv]
-    return [(float(vals[3 * k]), float(vals[3 * k + 1]), float(vals[3 * k + 2])) for k in range(nv)]
-
-
 def read_off(path):
     """points and triangles (polygons fanned) of an OFF file"""
     with open(path) as f:
@@ -135,18 +126,21 @@ def read_off(path):
 
 
 def diagonal(path):
-    pts = read_off_points(path)
+    pts = read_off(path)[0]
     lo = [min(p[k] for p in pts) for k in range(3)]
     hi = [max(p[k] for p in pts) for k in range(3)]
     return math.sqrt(sum((hi[k] - lo[k]) ** 2 for k in range(3)))
 
 
+def pinned(cmd, core):
+    """cmd run on one core (taskset), when there is a core to pin to"""
+    return ["taskset", "-c", str(core)] + cmd if core is not None and shutil.which("taskset") else cmd
+
+
 def timed(cmd, core, timeout, log):
     """runs cmd pinned to `core`; returns (exit code or None on timeout, wall s, peak MiB, stdout)"""
     tf = log + ".time"
-    full = ["/usr/bin/time", "-f", "%e %M", "-o", tf] + cmd
-    if shutil.which("taskset") and core is not None:
-        full = ["taskset", "-c", str(core)] + full
+    full = pinned(["/usr/bin/time", "-f", "%e %M", "-o", tf] + cmd, core)
     # its own process group, so that a timeout kills the mesher, not only /usr/bin/time above it
     p = subprocess.Popen(full, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=ENV, start_new_session=True)
     try:
@@ -185,10 +179,8 @@ def post(cmd, core, timeout, **kw):
     """a post-processing command (conversion, check, extraction): pinned to the job's core like the
     meshers (the other job's mesher is being timed on the other core), with a timeout; returns the
     CompletedProcess, or None on a timeout"""
-    if shutil.which("taskset") and core is not None:
-        cmd = ["taskset", "-c", str(core)] + cmd
     try:
-        return subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=timeout, **kw)
+        return subprocess.run(pinned(cmd, core), capture_output=True, text=True, env=ENV, timeout=timeout, **kw)
     except subprocess.TimeoutExpired:
         return None
 

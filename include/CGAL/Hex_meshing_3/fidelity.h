@@ -594,8 +594,8 @@ Box_contacts box_contacts(const HexMesh& mesh, const PolyhedralMesh& pm, const D
         next.erase(e);
         if(v == start) { closed = true; break; }
       }
-      if(!closed) continue;
-      L.area = twice_area(L.pts) / 2;   // a chain from the border to the border: a hole reaching it
+      if(!closed) continue;   // a chain from the border to the border: a hole reaching it
+      L.area = twice_area(L.pts) / 2;
       ((L.area > 0) == (face_sign > 0) ? islands : holes).push_back(std::move(L));
     }
     auto inside = [](const Loop& L, const P2& x) {   // even-odd rule
