@@ -134,6 +134,15 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *     \cgalParamType{`bool`}
  *     \cgalParamDefault{`false`}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{polish_worst_cells}
+ *     \cgalParamDescription{`true`: the capture ends by moving the vertices of the cells whose scaled Jacobian
+ *       (or face-pyramid or split-face warp quality) is below 0.35 with the max-min step alone, no
+ *       cell falling below min(its own, 0.35), no face split getting worse below 0.05 and no face's
+ *       non-orthogonality rising above max(its own, 50 degrees): neither the minimum below 0.35 nor the
+ *       count of cells under 0.35 can get worse}
+ *     \cgalParamType{`bool`}
+ *     \cgalParamDefault{`true`}
+ *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{progress and cancellation hooks (model of `HexMeshingVisitor`)}
  *     \cgalParamType{a class, or `std::reference_wrapper` of one}
@@ -194,6 +203,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     visitor.on_phase_begin("capture", out.number_of_cells());
     typename Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features>::Options copt;
     copt.feature_pillows = choose_parameter(get_parameter(np, HNP::feature_pillows), false);
+    if(!choose_parameter(get_parameter(np, HNP::polish_worst_cells), true)) copt.polish_passes = 0;
     Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features, stats, copt);
     if(!capture.run(visitor)) status = Hex_meshing_3::Status::CANCELED;
     visitor.on_phase_end("capture");

@@ -25,6 +25,7 @@ enum statistics_t { statistics };
 enum body_fitted_t { body_fitted };
 enum feature_curves_t { feature_curves };
 enum feature_pillows_t { feature_pillows };
+enum polish_worst_cells_t { polish_worst_cells };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -64,6 +65,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::feature_pillows_t, Named_parameters>
   feature_pillows(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::polish_worst_cells_t, Named_parameters>
+  polish_worst_cells(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -104,6 +109,11 @@ Named_parameters<V, internal_np::feature_curves_t> feature_curves(const V& v) { 
 /// `make_hex_mesh_3()`); experimental, off by default
 template <typename V>
 Named_parameters<V, internal_np::feature_pillows_t> feature_pillows(const V& v) { return { v }; }
+
+/// `false` skips the capture's last step, the polish of the cells below 0.35 (see
+/// `make_hex_mesh_3()`); on by default
+template <typename V>
+Named_parameters<V, internal_np::polish_worst_cells_t> polish_worst_cells(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }

@@ -307,6 +307,8 @@ public:
     double max_non_orthogonality = 50;      ///< degrees: the cells at faces beyond it are worked on after the repairs
     bool feature_pillows = false;           ///< convex sharp curves get a sheet of hexahedra along their chain (`pillow_chains()`)
     double pillow_max_offset = 0.5;         ///< ... if their chain's vertices lie this close to the curve on average (x local size) before snapping
+    double polish_quality = 0.35;           ///< the polish works on cells below this and keeps the others above it
+    int polish_passes = 8;                  ///< sweeps of the polish at most
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -346,6 +348,8 @@ public:
     repair_split_face_warp();
     reduce_non_orthogonality();
     lap("repairs");
+    polish();
+    lap("polish");
     assign_patches();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
@@ -1558,12 +1562,14 @@ private:
   // 4. optimisation
   void corners(Index c, Vec3* x) const { for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]]; }
   double cell_sj(Index c) const { Vec3 x[8]; corners(c, x); return hex_scaled_jacobian(x); }
+  double cell_split(Index c) const { Vec3 x[8]; corners(c, x); return hex_face_split_quality(x); }
   Vec3 cell_centre(Index c) const { Vec3 x[8]; corners(c, x); return hex_centre(x); }
   double cell_quality(Index c) const
   {
     Vec3 x[8];
     corners(c, x);
     const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
+    if(use_polish) return (std::min)(q, split_warp_quality(c, x));   // the splits are guarded apart
     if(use_split_warp) return (std::min)(q, split_warp_quality(c, x));
     if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
       const double a = cell_non_orthogonality(c);
@@ -1635,9 +1641,14 @@ private:
     base_old.resize(cells.size());
     // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
     double nonortho_cap = 0;
-    if(use_face_splits || use_split_warp || use_non_orthogonality) {
+    const bool guard_sj = use_face_splits || use_split_warp || use_non_orthogonality || use_polish;
+    if(guard_sj) {
       for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_sj(cells[i]);
-      nonortho_cap = (std::max)(60.0, max_non_orthogonality(cells));
+      if(use_polish) {   // and no face split may get worse below the repair's threshold
+        split_old.resize(cells.size());
+        for(std::size_t i = 0; i < cells.size(); ++i) split_old[i] = cell_split(cells[i]);
+      }
+      nonortho_cap = (std::max)(use_polish ? opt.max_non_orthogonality : 60.0, max_non_orthogonality(cells));
     }
     Vec3 best = x0;
     double fb = f0, mb = m0;
@@ -1652,11 +1663,12 @@ private:
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const double q = cell_quality(cells[i]);
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
-        if((use_face_splits || use_split_warp || use_non_orthogonality) && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
+        if(guard_sj && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
+        if(use_polish && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) return;
         f = (std::min)(f, q);
         mean += q;
       }
-      if((use_face_splits || use_split_warp) && max_non_orthogonality(cells) > nonortho_cap) return;
+      if((use_face_splits || use_split_warp || use_polish) && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
       if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; }
     };
@@ -2085,6 +2097,28 @@ private:
     sj_floor = floor_before;
   }
 
+  // The worst cells last: their vertices are moved by `improve()` alone (no energy step, which
+  // trades a cell's minimum for its neighbours' shape), with every repair's measure in the quality
+  // and no cell allowed below min(its quality, `opt.polish_quality`) nor any face's
+  // non-orthogonality above max(its own, `opt.max_non_orthogonality`), nor its scaled Jacobian
+  // below min(its own, `opt.polish_quality`): neither the minimum scaled Jacobian below 0.35 nor
+  // the count of cells under it can get worse. `opt.polish_passes` 0 turns it off.
+  void polish()
+  {
+    const double keep_before = opt.keep_quality, floor_before = sj_floor;
+    opt.keep_quality = sj_floor = opt.polish_quality;
+    use_polish = true;
+    const int passes_before = opt.face_split_passes;
+    opt.face_split_passes = opt.polish_passes;
+    rep.polish_moves += repair_sweeps([&](std::vector<char>& chosen) {
+      for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = cell_quality(c) < opt.polish_quality;
+    });
+    opt.face_split_passes = passes_before;
+    use_polish = false;
+    opt.keep_quality = keep_before;
+    sj_floor = floor_before;
+  }
+
   // A coarse cell's face split in four by a face node is written as four quarters meeting at
   // the node: on a warped face they form a saddle, whose diagonal quarters face each other, and
   // OpenFOAM calls the cell concave (checkMesh -allGeometry) unless the node's bulge outruns the
@@ -2299,6 +2333,7 @@ private:
   Meshing_statistics& rep;   // the buffer_cells count is also where the buffer cells start
   double box_lo[3], box_hi[3];
   std::vector<Vec3> P;
+  std::vector<double> split_old;   // improve() in the polish: the cells' face-split qualities before the move
   std::vector<double> q_old;
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
@@ -2371,6 +2406,7 @@ private:
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
   bool cancelled = false;
+  bool use_polish = false;        // cell_quality() counts the split faces' warp, improve() guards the rest (the polish)
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
   bool use_non_orthogonality = false;   // cell_quality() is the worst face's non-orthogonality (that repair)
