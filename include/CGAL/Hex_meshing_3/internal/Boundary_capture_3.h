@@ -57,6 +57,7 @@
 #include <memory>
 #include <queue>
 #include <set>
+#include <type_traits>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -351,6 +352,7 @@ public:
     polish();
     lap("polish");
     assign_patches();
+    release_work_data();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
     for(std::size_t v = 0; v < P.size(); ++v) m.points[v] = Point_3(P[v][0], P[v][1], P[v][2]);
@@ -2283,6 +2285,21 @@ private:
     for(auto& f : faces) f.cell = new_index[f.cell];
     m.boundary_faces.swap(faces);
     rep.buffer_cells -= n;
+  }
+
+  // Before the cleanup (which builds the polyhedral mesh and its OpenFOAM geometry, the capture's
+  // peak of memory): what the optimisation and the repairs used is freed. The cleanup reads the
+  // positions, the cells and `buffer_owner` only.
+  void release_work_data()
+  {
+    auto drop = [](auto& x) { std::decay_t<decltype(x)>().swap(x); };
+    drop(region_trees); drop(region_triangles); drop(curve_trees); drop(curve_segments);
+    drop(nbrs); drop(snbrs); drop(cnbrs); drop(deps); drop(vertex_top_faces); drop(fnormals);
+    drop(hang_masters); drop(hang_of); drop(cstart); drop(cinc); drop(hint); drop(hint_region);
+    drop(quality_cache); drop(quality_at); drop(moved_at); for(auto& f : failed_at) drop(f);
+    drop(split_faces); drop(face_neighbour); drop(kind); drop(planes); drop(twin); drop(inner);
+    drop(inner_of); drop(top_faces); drop(curve_of); drop(hloc); drop(vregion); drop(face_region);
+    drop(tri_region); drop(pillow_sector_faces); drop(pillow_twins); drop(turn_vertices);
   }
 
   // after removing cells: vertices no cell uses go, and so do the hanging nodes they were
