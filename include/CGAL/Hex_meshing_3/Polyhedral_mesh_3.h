@@ -15,6 +15,7 @@
 // neighbour, normal from owner to neighbour), then boundary faces grouped by patch.
 
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
+#include <CGAL/Hex_meshing_3/internal/vertex_cells.h>
 
 #include <algorithm>
 #include <array>
@@ -29,6 +30,54 @@ namespace Hex_meshing_3 {
 
 /*!
  * \ingroup PkgHexMeshing3Mesh
+ * \brief polygons stored one after the other (compressed rows): `faces[i]` is a read-only range
+ * of the vertex indices of polygon `i` (`begin()`, `end()`, `size()`, `operator[]`). A vector
+ * per polygon would take three times the memory on large meshes.
+ */
+class Polygon_list
+{
+public:
+  typedef std::uint32_t Index;
+  struct Polygon
+  {
+    const Index* first;
+    const Index* last;
+    const Index* begin() const { return first; }
+    const Index* end() const { return last; }
+    std::size_t size() const { return std::size_t(last - first); }
+    Index operator[](std::size_t k) const { return first[k]; }
+  };
+  struct const_iterator
+  {
+    const Polygon_list* list;
+    std::size_t i;
+    Polygon operator*() const { return (*list)[i]; }
+    const_iterator& operator++() { ++i; return *this; }
+    bool operator!=(const const_iterator& o) const { return i != o.i; }
+    bool operator==(const const_iterator& o) const { return i == o.i; }
+  };
+
+  std::size_t size() const { return start_.size() - 1; }
+  bool empty() const { return size() == 0; }
+  Polygon operator[](std::size_t i) const
+  { return {vertices_.data() + start_[i], vertices_.data() + start_[i + 1]}; }
+  const_iterator begin() const { return {this, 0}; }
+  const_iterator end() const { return {this, size()}; }
+  void clear() { vertices_.clear(); start_.assign(1, 0); }
+  void reserve(std::size_t polygons, std::size_t vertices) { start_.reserve(polygons + 1); vertices_.reserve(vertices); }
+  /// appends the polygon with the vertices in [b, e)
+  template <typename Iterator>
+  void push_back(Iterator b, Iterator e) { vertices_.insert(vertices_.end(), b, e); start_.push_back(vertices_.size()); }
+  bool operator==(const Polygon_list& o) const { return start_ == o.start_ && vertices_ == o.vertices_; }
+  bool operator!=(const Polygon_list& o) const { return !(*this == o); }
+
+private:
+  std::vector<Index> vertices_;
+  std::vector<std::size_t> start_{0};
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Mesh
  * \brief the polyhedral (face-based) form of a `Hex_mesh_3`, as OpenFOAM stores meshes.
  */
 struct Polyhedral_mesh_3
@@ -36,7 +85,7 @@ struct Polyhedral_mesh_3
   typedef std::uint32_t Index;
   struct Patch { std::string name; std::size_t start = 0, size = 0; };
 
-  std::vector<std::vector<Index>> faces;   ///< internal faces, then boundary faces by patch
+  Polygon_list faces;                      ///< internal faces, then boundary faces by patch
   std::vector<Index> owner;                ///< one per face
   std::vector<Index> neighbour;            ///< one per internal face
   std::vector<Patch> patches;              ///< as in the `Hex_mesh_3`, with their face ranges
@@ -86,23 +135,20 @@ struct Polyhedral_mesh_3
     bkeys.reserve(mesh.boundary_faces.size());
     for(const auto& bf : mesh.boundary_faces) bkeys.push_back({sorted(bf.vertices), bf.patch});
     std::sort(bkeys.begin(), bkeys.end());
-    // the whole faces of all cells, by key: a half of a coarse face is a 1:2 split only if some
-    // other cell (or the boundary) has it as a face. Midpoints on two opposite edges alone do not
-    // tell: octrees often have them on a coarse face whose neighbour is just as coarse. Without
-    // edge midpoints there is no such split, and no need for this index.
-    std::vector<std::pair<Key, Index>> cell_faces;
-    if(!edge_mid.empty()) {
-      cell_faces.reserve(6 * mesh.hexahedra.size());
-      for(Index c = 0; c < mesh.hexahedra.size(); ++c) {
-        const auto& h = mesh.hexahedra[c];
-        for(const auto& f : lf) cell_faces.push_back({sorted({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}}), c});
-      }
-      std::sort(cell_faces.begin(), cell_faces.end());
-    }
+    // a half of a coarse face is a 1:2 split only if some other cell (or the boundary) has it as
+    // a whole face. Midpoints on two opposite edges alone do not tell: octrees often have them on
+    // a coarse face whose neighbour is just as coarse. The other cell has the half's corners: it
+    // is among the cells at its first corner (without edge midpoints there is no such split, and
+    // no need for this index)
+    std::vector<Index> vstart, vcells;
+    if(!edge_mid.empty()) internal::vertex_cells(mesh, mesh.points.size(), vstart, vcells);
     auto is_face_beyond = [&](const Key& k, Index c) {
-      auto it = std::lower_bound(cell_faces.begin(), cell_faces.end(), std::make_pair(k, Index(0)));
-      for(; it != cell_faces.end() && it->first == k; ++it)
-        if(it->second != c) return true;
+      for(Index i = vstart[k[0]]; i < vstart[k[0] + 1]; ++i) {
+        const Index c2 = vcells[i];
+        if(c2 == c) continue;
+        const auto& h = mesh.hexahedra[c2];
+        for(const auto& f : lf) if(sorted({{h[f[0]], h[f[1]], h[f[2]], h[f[3]]}}) == k) return true;
+      }
       auto b = std::lower_bound(bkeys.begin(), bkeys.end(), std::make_pair(k, -1));
       return b != bkeys.end() && b->first == k;
     };
@@ -112,8 +158,13 @@ struct Polyhedral_mesh_3
     // the polygons, one after the other (`poly_start[i]`: where polygon i starts); a vector per
     // polygon would cost three times the memory on large meshes
     std::vector<Index> poly_vertices, poly_start{0};
-    items.reserve(6 * mesh.hexahedra.size());
-    poly_start.reserve(6 * mesh.hexahedra.size() + 1);
+    // at most 3 more per split face (its centre a hanging node), 1 more per 1:2 split (an edge
+    // midpoint is on at most 3 coarse cells' faces, two each): no reallocation, which would double them
+    std::size_t n4 = 0;
+    for(const auto& h : mesh.hanging_nodes) if(h.number_of_masters != 2) ++n4;
+    const std::size_t npoly = 6 * mesh.hexahedra.size() + 3 * n4 + 6 * (mesh.hanging_nodes.size() - n4);
+    items.reserve(npoly);
+    poly_start.reserve(npoly + 1);
     poly_vertices.reserve(24 * mesh.hexahedra.size() + 24 * mesh.hanging_nodes.size());
     auto poly_size = [&](Index i) { return poly_start[i + 1] - poly_start[i]; };
     // a quad of cell c with, after each corner, the hanging midpoint of the edge it starts (if any)
@@ -162,7 +213,8 @@ struct Polyhedral_mesh_3
         if(!split) add_polygon({{q[0], q[1], q[2], q[3]}}, c);
       }
     }
-    std::vector<std::pair<Key, Index>>().swap(cell_faces);
+    std::vector<Index>().swap(vstart);
+    std::vector<Index>().swap(vcells);
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
       return a.key != b.key ? a.key < b.key : a.cell < b.cell; });
 
@@ -201,14 +253,17 @@ struct Polyhedral_mesh_3
       return a.patch != b.patch ? a.patch < b.patch : a.own < b.own; });
 
     std::vector<Item>().swap(items);
-    auto polygon = [&](Index i) {
-      return std::vector<Index>(poly_vertices.begin() + poly_start[i], poly_vertices.begin() + poly_start[i + 1]);
+    auto add_face = [&](Index i) {
+      faces.push_back(poly_vertices.begin() + poly_start[i], poly_vertices.begin() + poly_start[i + 1]);
     };
-    faces.reserve(internal.size() + boundary.size());
+    std::size_t nv = 0;
+    for(const Internal& f : internal) nv += poly_size(f.poly);
+    for(const Boundary& f : boundary) nv += poly_size(f.poly);
+    faces.reserve(internal.size() + boundary.size(), nv);
     owner.reserve(internal.size() + boundary.size());
     neighbour.reserve(internal.size());
     for(const Internal& f : internal) {
-      faces.push_back(polygon(f.poly)); owner.push_back(f.own); neighbour.push_back(f.nei);
+      add_face(f.poly); owner.push_back(f.own); neighbour.push_back(f.nei);
     }
     patches.resize(mesh.patch_names.size());
     for(std::size_t p = 0; p < patches.size(); ++p) patches[p].name = mesh.patch_names[p];
@@ -216,7 +271,7 @@ struct Polyhedral_mesh_3
     for(std::size_t p = 0; p < patches.size(); ++p) {
       patches[p].start = faces.size();
       while(k < boundary.size() && boundary[k].patch == int(p)) {
-        faces.push_back(polygon(boundary[k].poly)); owner.push_back(boundary[k].own); ++k;
+        add_face(boundary[k].poly); owner.push_back(boundary[k].own); ++k;
       }
       patches[p].size = faces.size() - patches[p].start;
     }

@@ -131,8 +131,8 @@ struct OpenFOAM_geometry
   std::vector<double> cell_volumes;
 
   /// OpenFOAM's centre and area vector of the face with vertices `F` (one face of `compute()`)
-  template <typename Point_3, typename Index>
-  static void face_centre_and_area(const std::vector<Point_3>& points, const std::vector<Index>& F,
+  template <typename Point_3, typename Polygon>
+  static void face_centre_and_area(const std::vector<Point_3>& points, const Polygon& F,
                                    Vec3& centre, Vec3& area)
   {
     internal::foam_face_centre_and_area(F.size(), [&](std::size_t i) { return internal::vec(points[F[i]]); }, centre, area);
