@@ -137,9 +137,10 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   \cgalParamNBegin{polish_worst_cells}
  *     \cgalParamDescription{`true`: the capture ends by moving the vertices of the cells whose scaled Jacobian
  *       (or face-pyramid or split-face warp quality) is below 0.35 with the max-min step alone, no
- *       cell falling below min(its own, 0.35), no face split getting worse below 0.05 and no face's
- *       non-orthogonality rising above max(its own, 50 degrees): neither the minimum below 0.35 nor the
- *       count of cells under 0.35 can get worse}
+ *       cell falling below min(its own, 0.35), no cell's worst face split below min(its own, 0.05)
+ *       and the worst non-orthogonality around the moved vertex (whole faces, vertex averages) not
+ *       above max(its value, 50 degrees): neither the minimum below 0.35 nor the count of cells
+ *       under 0.35 can get worse (OpenFOAM's non-orthogonality may rise a little)}
  *     \cgalParamType{`bool`}
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd

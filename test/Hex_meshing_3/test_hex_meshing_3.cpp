@@ -1552,6 +1552,8 @@ void test_body_fitted()
       std::cout << "    polish: " << st.polish_moves << " moves; min SJ " << q0 << " -> " << q1 << ", cells under 0.35 "
                 << n0 << " -> " << n1 << "\n";
       assert(st0.polish_moves == 0 && st.polish_moves > 0);
+      // the cleanup after it (buffer cells below 0.02 or at faces skewed beyond 3.5) removes no more
+      assert(st.removed_buffer_cells <= st0.removed_buffer_cells);
       assert(q1 >= (std::min)(q0, 0.35) - 1e-12 && n1 <= n0);
       assert(n1 < n0);   // and it does something
     }

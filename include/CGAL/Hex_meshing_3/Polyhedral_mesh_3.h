@@ -19,7 +19,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -49,6 +51,11 @@ public:
   };
   struct const_iterator
   {
+    typedef std::forward_iterator_tag iterator_category;
+    typedef Polygon value_type;
+    typedef std::ptrdiff_t difference_type;
+    typedef const Polygon* pointer;
+    typedef Polygon reference;
     const Polygon_list* list;
     std::size_t i;
     Polygon operator*() const { return (*list)[i]; }
@@ -57,17 +64,22 @@ public:
     bool operator==(const const_iterator& o) const { return i == o.i; }
   };
 
-  std::size_t size() const { return start_.size() - 1; }
+  std::size_t size() const { return start_.empty() ? 0 : start_.size() - 1; }   // (empty once moved from)
   bool empty() const { return size() == 0; }
   Polygon operator[](std::size_t i) const
   { return {vertices_.data() + start_[i], vertices_.data() + start_[i + 1]}; }
   const_iterator begin() const { return {this, 0}; }
   const_iterator end() const { return {this, size()}; }
   void clear() { vertices_.clear(); start_.assign(1, 0); }
-  void reserve(std::size_t polygons, std::size_t vertices) { start_.reserve(polygons + 1); vertices_.reserve(vertices); }
   /// appends the polygon with the vertices in [b, e)
   template <typename Iterator>
-  void push_back(Iterator b, Iterator e) { vertices_.insert(vertices_.end(), b, e); start_.push_back(vertices_.size()); }
+  void push_back(Iterator b, Iterator e)
+  {
+    if(start_.empty()) start_.push_back(0);
+    vertices_.insert(vertices_.end(), b, e);
+    start_.push_back(vertices_.size());
+  }
+  void reserve(std::size_t polygons, std::size_t vertices) { start_.reserve(polygons + 1); vertices_.reserve(vertices); }
   bool operator==(const Polygon_list& o) const { return start_ == o.start_ && vertices_ == o.vertices_; }
   bool operator!=(const Polygon_list& o) const { return !(*this == o); }
 
@@ -158,11 +170,12 @@ struct Polyhedral_mesh_3
     // the polygons, one after the other (`poly_start[i]`: where polygon i starts); a vector per
     // polygon would cost three times the memory on large meshes
     std::vector<Index> poly_vertices, poly_start{0};
-    // at most 3 more per split face (its centre a hanging node), 1 more per 1:2 split (an edge
-    // midpoint is on at most 3 coarse cells' faces, two each): no reallocation, which would double them
+    // 3 more per face split in four (its centre a hanging node), 1 more per 1:2 split, which
+    // takes two edge midpoints, each on the faces of at most 3 coarse cells (reserved so: a
+    // reallocation would double them; exceeding the bound only costs that)
     std::size_t n4 = 0;
     for(const auto& h : mesh.hanging_nodes) if(h.number_of_masters != 2) ++n4;
-    const std::size_t npoly = 6 * mesh.hexahedra.size() + 3 * n4 + 6 * (mesh.hanging_nodes.size() - n4);
+    const std::size_t npoly = 6 * mesh.hexahedra.size() + 3 * n4 + 3 * (mesh.hanging_nodes.size() - n4);
     items.reserve(npoly);
     poly_start.reserve(npoly + 1);
     poly_vertices.reserve(24 * mesh.hexahedra.size() + 24 * mesh.hanging_nodes.size());

@@ -349,7 +349,7 @@ public:
     repair_split_face_warp();
     reduce_non_orthogonality();
     lap("repairs");
-    polish();
+    if(!cancelled) polish();   // not needed for validity: a cancellation skips it
     lap("polish");
     assign_patches();
     release_work_data();
@@ -2100,11 +2100,14 @@ private:
   }
 
   // The worst cells last: their vertices are moved by `improve()` alone (no energy step, which
-  // trades a cell's minimum for its neighbours' shape), with every repair's measure in the quality
-  // and no cell allowed below min(its quality, `opt.polish_quality`) nor any face's
-  // non-orthogonality above max(its own, `opt.max_non_orthogonality`), nor its scaled Jacobian
-  // below min(its own, `opt.polish_quality`): neither the minimum scaled Jacobian below 0.35 nor
-  // the count of cells under it can get worse. `opt.polish_passes` 0 turns it off.
+  // trades a cell's minimum for its neighbours' shape), the split faces' warp counted in the
+  // quality. Guards: no cell below min(its quality, `opt.polish_quality`), nor its scaled Jacobian
+  // below min(its own, `opt.polish_quality`), nor its worst face split (`hex_face_split_quality`)
+  // below min(its own, `opt.min_face_split_quality`); the worst non-orthogonality of the moved
+  // vertex's cells (whole faces, vertex averages: `max_non_orthogonality()`) may not rise above
+  // max(its value, `opt.max_non_orthogonality`). So neither the minimum scaled Jacobian below 0.35
+  // nor the count of cells under it can get worse; OpenFOAM's non-orthogonality (cell centres,
+  // split faces) may rise a little. `opt.polish_passes` 0 turns it off.
   void polish()
   {
     const double keep_before = opt.keep_quality, floor_before = sj_floor;
