@@ -1342,7 +1342,9 @@ private:
   void build_region_tree(std::size_t r)
   {
     if(region_trees[r]) return;
-    region_trees[r] = std::make_unique<Tree>(region_triangles[r].begin(), region_triangles[r].end());
+    region_trees[r] = std::make_unique<Tree>();
+    for(const Triangle_3* t : region_triangles[r]) region_trees[r]->insert(typename Tree::Primitive(t));
+    region_trees[r]->build();
     region_trees[r]->accelerate_distance_queries();
   }
 
@@ -1437,7 +1439,7 @@ private:
       tri_region[t] = root_region[r];
     }
     region_triangles.assign(std::size_t(nreg), {});
-    for(Index t = 0; t < tris.size(); ++t) region_triangles[std::size_t(tri_region[t])].push_back(d.triangle(t));
+    for(Index t = 0; t < tris.size(); ++t) region_triangles[std::size_t(tri_region[t])].push_back(&d.triangle(t));
     region_trees.clear();
     region_trees.resize(std::size_t(nreg));
     // mesh: components of top faces across non-feature edges
@@ -2351,7 +2353,7 @@ private:
 
   typedef typename std::vector<Segment_3>::const_iterator Seg_it;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Segment_tree;
-  typedef typename std::vector<Triangle_3>::const_iterator Tri_it;
+  typedef const Triangle_3* Tri_it;   // the domain's triangles (a region's tree copies none)
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_triangle_primitive<GT, Tri_it>>> Tree;
 
   HexMesh& m;
@@ -2430,7 +2432,7 @@ private:
   std::map<Index, std::vector<std::size_t>> pillow_sector_faces;   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
   std::map<Index, std::vector<Index>> pillow_twins;   // a pillowed chain vertex -> its copies, one per sector
   std::unordered_map<std::uint64_t, std::vector<Index>> curve_edge_triangles;   // an edge of a followed input curve -> its triangles
-  std::vector<std::vector<Triangle_3>> region_triangles;
+  std::vector<std::vector<const Triangle_3*>> region_triangles;   // into the domain's triangles
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
   bool cancelled = false;
