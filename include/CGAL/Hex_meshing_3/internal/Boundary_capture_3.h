@@ -1576,8 +1576,8 @@ private:
     Vec3 x[8];
     corners(c, x);
     const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
-    if(use_polish) return (std::min)(q, split_warp_quality(c, x));   // the splits are guarded apart
-    if(use_split_warp) return (std::min)(q, split_warp_quality(c, x));
+    // the polish counts the warp too (its face splits are guarded apart, in `improve()`)
+    if(use_split_warp || use_polish) return (std::min)(q, split_warp_quality(c, x));
     if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
       const double a = cell_non_orthogonality(c);
       return q <= 0 ? q : a <= opt.max_non_orthogonality ? 1.0 : 1 - (a - opt.max_non_orthogonality) / (90 - opt.max_non_orthogonality);
@@ -2021,7 +2021,7 @@ private:
         corners(c, x);
         chosen[c] = failing[c] && hex_face_split_quality(x) < opt.min_face_split_quality;
       }
-    });
+    }, opt.face_split_passes);
     use_face_splits = false;
   }
 
@@ -2036,14 +2036,14 @@ private:
 
   // The sweeps of the repairs: `select(chosen)` marks the cells to work on, their vertices go
   // through `improve()` (with the repair's quality and guards), until none moves or after
-  // `opt.face_split_passes` sweeps. Returns the number of moves.
+  // `passes` sweeps. Returns the number of moves.
   template <typename Select>
-  std::size_t repair_sweeps(Select&& select)
+  std::size_t repair_sweeps(Select&& select, int passes)
   {
     std::vector<Index> cells, work;
     std::vector<char> in_work(P.size(), 0), chosen(m.hexahedra.size(), 0);
     std::size_t total = 0;
-    for(int pass = 0; pass < opt.face_split_passes; ++pass) {
+    for(int pass = 0; pass < passes; ++pass) {
       std::fill(chosen.begin(), chosen.end(), 0);
       select(chosen);
       for(Index c = 0; c < m.hexahedra.size(); ++c)
@@ -2099,7 +2099,7 @@ private:
     use_non_orthogonality = true;
     rep.non_orthogonality_repairs += repair_sweeps([&](std::vector<char>& chosen) {
       for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = cell_non_orthogonality(c) > opt.max_non_orthogonality;
-    });
+    }, opt.face_split_passes);
     use_non_orthogonality = false;
     sj_floor = floor_before;
   }
@@ -2118,12 +2118,9 @@ private:
     const double keep_before = opt.keep_quality, floor_before = sj_floor;
     opt.keep_quality = sj_floor = opt.polish_quality;
     use_polish = true;
-    const int passes_before = opt.face_split_passes;
-    opt.face_split_passes = opt.polish_passes;
     rep.polish_moves += repair_sweeps([&](std::vector<char>& chosen) {
       for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = cell_quality(c) < opt.polish_quality;
-    });
-    opt.face_split_passes = passes_before;
+    }, opt.polish_passes);
     use_polish = false;
     opt.keep_quality = keep_before;
     sj_floor = floor_before;
@@ -2162,7 +2159,7 @@ private:
         corners(c, x);
         chosen[c] = split_warp_quality(c, x) < 0.5;
       }
-    });
+    }, opt.face_split_passes);
     use_split_warp = false;
   }
 
