@@ -139,8 +139,13 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       (or face-pyramid or split-face warp quality) is below 0.35 with the max-min step alone, no
  *       cell falling below min(its own, 0.35), no cell's worst face split below min(its own, 0.05)
  *       and the worst non-orthogonality around the moved vertex (whole faces, vertex averages) not
- *       above max(its value, 50 degrees): neither the minimum below 0.35 nor the count of cells
- *       under 0.35 can get worse (OpenFOAM's non-orthogonality may rise a little)}
+ *       above max(its value, 50 degrees); then by joint moves around each cell still below 0.3
+ *       (the vertices of the cells around it move together, down the gradient of a soft minimum
+ *       of their cells' qualities, under the same guards but that a cell below 0.35 may fall to
+ *       the patch's current minimum; a patch is kept if its worst cell got better and its count
+ *       of cells below 0.3 did not grow): the minimum below 0.35 cannot get worse, nor the
+ *       count of cells whose scaled Jacobian is under 0.3 (OpenFOAM's non-orthogonality may rise
+ *       a little)}
  *     \cgalParamType{`bool`}
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd

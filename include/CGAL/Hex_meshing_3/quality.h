@@ -45,8 +45,10 @@ inline Vec3 vec(const Vec3& p) { return p; }
 } // namespace internal
 
 namespace internal {
-// Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
-inline double hex_scaled_jacobian(const Vec3* x)
+// The nine scaled Jacobians of a hexahedron given as 8 corner vectors (VTK order), unclamped:
+// its corners' (j[0..7], the three edges at corner i, normalised) and its centre's (j[8], the
+// three principal axes). Verdict's scaled Jacobian is their minimum, clamped to [-1, 1].
+inline void hex_scaled_jacobians(const Vec3* x, double* j)
 {
   static constexpr int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
   // the squared lengths of the 12 edges (`hex_local_edges()`), and which three meet at each corner
@@ -58,19 +60,27 @@ inline double hex_scaled_jacobian(const Vec3* x)
     const Vec3 d = sub(x[e[1]], x[e[0]]);
     ll[k] = dot(d, d);
   }
-  double sj = std::numeric_limits<double>::max();
   auto det = [](const Vec3& a, const Vec3& b, const Vec3& c, double l) {
     l = std::sqrt(l);
     if(!(l > 0)) return 0.0;
     return dot(a, cross(b, c)) / l;
   };
   for(int i = 0; i < 8; ++i)
-    sj = (std::min)(sj, det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i]),
-                            ll[ce[i][0]] * ll[ce[i][1]] * ll[ce[i][2]]));
+    j[i] = det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i]),
+               ll[ce[i][0]] * ll[ce[i][1]] * ll[ce[i][2]]);
   const Vec3 X1 = add(add(sub(x[1], x[0]), sub(x[2], x[3])), add(sub(x[5], x[4]), sub(x[6], x[7])));
   const Vec3 X2 = add(add(sub(x[3], x[0]), sub(x[2], x[1])), add(sub(x[7], x[4]), sub(x[6], x[5])));
   const Vec3 X3 = add(add(sub(x[4], x[0]), sub(x[5], x[1])), add(sub(x[6], x[2]), sub(x[7], x[3])));
-  sj = (std::min)(sj, det(X1, X2, X3, dot(X1, X1) * dot(X2, X2) * dot(X3, X3)));
+  j[8] = det(X1, X2, X3, dot(X1, X1) * dot(X2, X2) * dot(X3, X3));
+}
+
+// Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
+inline double hex_scaled_jacobian(const Vec3* x)
+{
+  double j[9];
+  hex_scaled_jacobians(x, j);
+  double sj = std::numeric_limits<double>::max();
+  for(double v : j) sj = (std::min)(sj, v);
   return (std::max)(-1.0, (std::min)(1.0, sj));
 }
 } // namespace internal

@@ -76,14 +76,14 @@ inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
 
 // The face pyramids OpenFOAM checks: each face split into 4 triangles around its vertex average,
 // each triangle with the cell's vertex average forms a tetrahedron that must have a positive
-// volume. Returns the smallest of their scaled volumes (6V / product of the 3 edge lengths at the
-// face centre) relative to a cube's, so 1 for a cube and <= 0 when a pyramid is inverted.
-inline double hex_pyramid_quality(const Vec3* x)
+// volume. Their 24 scaled volumes (6V / product of the 3 edge lengths at the face centre)
+// relative to a cube's, face by face: 1 for a cube, <= 0 when a pyramid is inverted.
+inline void hex_pyramid_qualities(const Vec3* x, double* out)
 {
   Vec3 cc{{0, 0, 0}};
   for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
   cc = mul(cc, 0.125);
-  double q = std::numeric_limits<double>::max();
+  int n = 0;
   for(const auto& f : hex_local_faces()) {
     const Vec3 fc = mul(add(add(x[f[0]], x[f[1]]), add(x[f[2]], x[f[3]])), 0.25);
     const Vec3 u = sub(cc, fc);
@@ -94,12 +94,19 @@ inline double hex_pyramid_quality(const Vec3* x)
     for(int i = 0; i < 4; ++i) {
       const int j = (i + 1) & 3;
       const double l = std::sqrt(aa[i] * aa[j] * uu);
-      const double v = l > 0 ? -dot(cross(a[i], a[j]), u) / l : 0.0;
-      q = (std::min)(q, v);
+      out[n++] = l > 0 ? -dot(cross(a[i], a[j]), u) / l : 0.0;
     }
   }
   // a cube: a, b = half diagonals of a face (orthogonal, length sqrt(2)/2), u = half an edge,
   // normal to the face: |a x b| |u| / (|a| |b| |u|) = 1
+}
+// the smallest of them
+inline double hex_pyramid_quality(const Vec3* x)
+{
+  double v[24];
+  hex_pyramid_qualities(x, v);
+  double q = std::numeric_limits<double>::max();
+  for(double y : v) q = (std::min)(q, y);
   return q;
 }
 
@@ -151,17 +158,63 @@ inline Vec3 foam_hex_centre(const Vec3* x)
 // each face whose fan of triangles forms tetrahedra of positive volume with the cell centres on
 // both sides): a quad split along one of its diagonals gives two triangles, each the corner
 // triangle of a vertex off that diagonal. The two cells of a face must agree on the diagonal, and
-// each sees only its own side, so both splits must be valid: returns the smallest, over the 24
-// corners of the six faces, of the corner triangle's tetrahedron with the cell's vertex average
-// (6V / product of the 3 edge lengths at the corner, relative to a cube's). 1 for a cube; <= 0
-// when a split of a face gives this cell a tetrahedron that is flat or inverted.
-inline double hex_face_split_quality(const Vec3* x)
+// each sees only its own side, so both splits must be valid. For each of the 24 corners of the
+// six faces (face by face), the corner triangle's tetrahedron with the cell's centre
+// (OpenFOAM's, `foam_hex_centre()`): 6V / product of the 3 edge lengths at the corner, relative
+// to a cube's. 1 for a cube; <= 0 when a split of a face gives this cell a tetrahedron that is
+// flat or inverted.
+inline void hex_face_split_qualities(const Vec3* x, double* out)
 {
   const Vec3 cc = foam_hex_centre(x);
-  double q = std::numeric_limits<double>::max();
+  int n = 0;
   for(const auto& f : hex_local_faces())
-    for(int i = 0; i < 4; ++i) q = (std::min)(q, face_corner_quality(x[f[i]], x[f[(i + 1) % 4]], x[f[(i + 3) % 4]], cc));
+    for(int i = 0; i < 4; ++i) out[n++] = face_corner_quality(x[f[i]], x[f[(i + 1) % 4]], x[f[(i + 3) % 4]], cc);
+}
+// the smallest of them
+inline double hex_face_split_quality(const Vec3* x)
+{
+  double v[24];
+  hex_face_split_qualities(x, v);
+  double q = std::numeric_limits<double>::max();
+  for(double y : v) q = (std::min)(q, y);
   return q;
+}
+
+// `g` (n vectors) becomes minus the direction d closest to -g with a_k . d >= 0 for the `m` rows
+// a_k of `ga` (each n vectors, row by row), so that a step along -g lowers none of the
+// constrained values at first order. d = -g + sum_k lambda_k a_k with lambda >= 0 minimising
+// |d|^2 (the dual problem, a non-negative least squares), by projected Gauss-Seidel sweeps on
+// lambda, until no multiplier changes by more than 1e-12 relative or after `sweeps` sweeps.
+inline void project_direction(std::vector<Vec3>& g, const std::vector<Vec3>& ga, std::size_t m, std::size_t n,
+                              int sweeps = 200)
+{
+  if(m == 0) return;
+  std::vector<Vec3> d(n);
+  for(std::size_t i = 0; i < n; ++i) d[i] = mul(g[i], -1);
+  std::vector<double> lambda(m, 0.0), aa(m, 0.0);
+  double scale = 0;
+  for(std::size_t k = 0; k < m; ++k) {
+    for(std::size_t i = 0; i < n; ++i) aa[k] += dot(ga[k * n + i], ga[k * n + i]);
+    scale = (std::max)(scale, aa[k]);
+  }
+  for(int sweep = 0; sweep < sweeps; ++sweep) {
+    double change = 0;
+    for(std::size_t k = 0; k < m; ++k) {
+      if(!(aa[k] > 1e-30 * scale)) continue;   // a value no vertex of the patch moves
+      double r = 0;
+      for(std::size_t i = 0; i < n; ++i) r += dot(ga[k * n + i], d[i]);
+      const double l = (std::max)(0.0, lambda[k] - r / aa[k]);
+      const double dl = l - lambda[k];
+      if(dl == 0) continue;
+      lambda[k] = l;
+      for(std::size_t i = 0; i < n; ++i) d[i] = add(d[i], mul(ga[k * n + i], dl));
+      change = (std::max)(change, std::abs(dl) * std::sqrt(aa[k]));
+    }
+    double dn = 0;
+    for(std::size_t i = 0; i < n; ++i) dn += dot(g[i], g[i]);
+    if(change <= 1e-12 * std::sqrt(dn)) break;
+  }
+  for(std::size_t i = 0; i < n; ++i) g[i] = mul(d[i], -1);
 }
 
 // Knupp's shape energy of a hexahedron: the mean over its 8 corners of the squared condition
@@ -313,6 +366,12 @@ public:
     double pillow_max_offset = 0.5;         ///< ... if their chain's vertices lie this close to the curve on average (x local size) before snapping
     double polish_quality = 0.35;           ///< the polish works on cells below this and keeps the others above it
     int polish_passes = 8;                  ///< sweeps of the polish at most
+    double patch_target = 0.5;              ///< the polish's joint moves (`polish_patches()`) penalise qualities below this
+    int patch_iterations = 40;              ///< gradient steps of a patch at most (0: no joint moves)
+    int patch_stall = 8;                    ///< ... stopped after this many steps without raising the patch's worst cell
+    int patch_rings = 1;                    ///< ... on the vertices of the cells around the cell's (1), of the cells around those (2), ...
+    double patch_floor = 0.3;               ///< the joint moves work around the cells below this, and keep a patch only if its count of cells whose scaled Jacobian is below it did not grow
+    double patch_sharpness = 30;            ///< ... their penalty exp(k (target - q)) - 1: its k
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -353,6 +412,7 @@ public:
     reduce_non_orthogonality();
     lap("repairs");
     if(!cancelled) polish();   // not needed for validity: a cancellation skips it
+    if(!cancelled && opt.polish_passes > 0 && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
     lap("polish");
     assign_patches();
     release_work_data();
@@ -2124,6 +2184,248 @@ private:
     use_polish = false;
     opt.keep_quality = keep_before;
     sj_floor = floor_before;
+  }
+
+  // a cell's qualities one by one (the polish's joint moves): [0, 9) its scaled Jacobians
+  // (`hex_scaled_jacobians()`), [9, 33) its face pyramids, [33, 57) its face splits, [57, 63) the
+  // warp quality of its faces split in four (1 for the others). The polish's quality is the
+  // minimum of all but the face splits.
+  static constexpr int n_cell_values = 63;
+  void cell_values(Index c, double* v) const
+  {
+    Vec3 x[8];
+    corners(c, x);
+    hex_scaled_jacobians(x, v);
+    hex_pyramid_qualities(x, v + 9);
+    hex_face_split_qualities(x, v + 33);
+    for(int f = 0; f < 6; ++f) v[57 + f] = 1;
+    if(c < split_faces.size())
+      for(std::uint8_t fi : split_faces[c]) v[57 + fi] = 1 - face_warp(x, hex_local_faces()[fi]) / (2 * opt.max_split_face_warp);
+  }
+
+  // The polish moves one vertex at a time: a cell whose worst corner needs several vertices to
+  // move together (a quad's angle on the surface opened by the vertices across it, whose other
+  // cells then need their own neighbours to follow) stays where it is. Joint moves: around each
+  // cell below `opt.patch_floor` (0.3), worst first, the movable vertices of the cells sharing a
+  // vertex with it (a patch, `opt.patch_rings` rings; boundary vertices slide on their surface or
+  // curve) go down the gradient of a soft minimum of the patch cells' values (`cell_values()`):
+  // the sum of exp(k (t - v)) - 1 over the values v below t = `opt.patch_target`,
+  // k = `opt.patch_sharpness`, the face splits rescaled so that min(2 x their floor, their value
+  // before) counts as t. Guards, at every step, each cell against its value before the patch: its
+  // quality and scaled Jacobian not below min(that value, `opt.polish_quality`, the patch's
+  // minimum now) - a cell below 0.35 may fall to the patch's minimum, what the max-min trades -
+  // its face split not below min(that value, `opt.min_face_split_quality`), the patch's worst
+  // non-orthogonality not above max(its value, `opt.max_non_orthogonality`). The values within
+  // `slack` of their floor are constraints of the step: its direction is the gradient projected
+  // so that none falls at first order (`project_direction()`). A step is taken if the penalty
+  // falls and the guards hold (a backtracking line search); the patch stops after
+  // `opt.patch_iterations` steps or `opt.patch_stall` steps without raising its worst cell, and is
+  // kept only if its worst cell got better and its count of cells whose scaled Jacobian is below
+  // `opt.patch_floor` did not grow. Gradients by forward differences of constrained moves.
+  // Returns the number of patches kept.
+  template <typename Visitor>
+  std::size_t polish_patches(Visitor& visitor)
+  {
+    const double t = opt.patch_target, k_sharp = opt.patch_sharpness, slack = 0.005;
+    const double split_scale = t / (2 * opt.min_face_split_quality);
+    use_polish = true;
+    std::vector<std::pair<double, Index>> bad;
+    for(Index c = 0; c < m.hexahedra.size(); ++c) {
+      const double q = cell_quality(c);
+      if(q < opt.patch_floor) bad.push_back({q, c});
+    }
+    std::sort(bad.begin(), bad.end());
+    std::size_t kept = 0;
+    std::vector<Index> pv, pc, cells;
+    std::vector<char> in_pv(P.size(), 0), in_pc(m.hexahedra.size(), 0);
+    std::vector<std::vector<Index>> vcells;   // per patch vertex: its cells (positions in pc), sorted
+    std::vector<Vec3> x0, xs, g, ga;
+    std::vector<double> q_old, sj_old, split_old_, split_ref, cv, vals, gbase;   // cv: the patch cells' values
+    struct Eval { double pen, q, sj, split; };
+    std::vector<Eval> ev, ev1;
+    std::vector<std::pair<Index, int>> active;   // the values near their floor: (cell in pc, value)
+    std::vector<std::size_t> active_start;       // per cell in pc: its first entry in `active`
+    double f_it = 0, sj_it = 0;                  // the patch's minimum quality and scaled Jacobian now
+    // what a cell's quality and scaled Jacobian may not fall below: min(its value, the polish's
+    // threshold, the patch's minimum now)
+    auto floor_q = [&](std::size_t j) { return (std::min)(q_old[j], (std::min)(opt.polish_quality, f_it)); };
+    auto floor_sj = [&](std::size_t j) { return (std::min)(sj_old[j], (std::min)(opt.polish_quality, sj_it)); };
+    auto count_below = [&]() {
+      std::size_t k = 0;
+      for(Index c : pc) if(cell_sj(c) < opt.patch_floor) ++k;
+      return k;
+    };
+    auto floor_of = [&](std::size_t j, int k) {
+      const double fq = floor_q(j);
+      if(k < 9) return (std::max)(fq, floor_sj(j));
+      if(k >= 33 && k < 57) return (std::min)(split_old_[j], opt.min_face_split_quality);
+      return fq;
+    };
+    // a cell's values into v, and from them its penalty, quality (as `cell_quality()` in the
+    // polish), scaled Jacobian and face split quality
+    auto evaluate = [&](std::size_t j, double* v) {
+      cell_values(pc[j], v);
+      Eval r{0, 0, 0, 0};
+      double sj = v[0], q = 1, split = v[33];
+      for(int k = 0; k < n_cell_values; ++k) {
+        const bool is_split = k >= 33 && k < 57;
+        if(k < 9) sj = (std::min)(sj, v[k]);
+        else if(is_split) split = (std::min)(split, v[k]);
+        else q = (std::min)(q, v[k]);
+        const double y = is_split ? t + (v[k] - split_ref[j]) * split_scale : v[k];
+        if(y < t) r.pen += std::expm1(k_sharp * (t - y));
+      }
+      r.sj = (std::max)(-1.0, (std::min)(1.0, sj));
+      r.q = (std::min)(r.sj, q);
+      r.split = split;
+      return r;
+    };
+    auto guards_hold = [&](const std::vector<Eval>& ev) {
+      for(std::size_t j = 0; j < ev.size(); ++j)
+        if(ev[j].q < floor_q(j) || ev[j].sj < floor_sj(j) || ev[j].split < (std::min)(split_old_[j], opt.min_face_split_quality))
+          return false;
+      return true;
+    };
+    std::size_t tried = 0;
+    for(const auto& b : bad) {
+      // (polled between patches: a patch is kept whole or not at all)
+      if(cancelled || (++tried % 32 == 0 && !visitor.go_further(1.0))) { cancelled = true; break; }
+      const Index c0 = b.second;
+      if(cell_quality(c0) >= opt.patch_floor) continue;
+      // the patch: the movable vertices of the cells around c0 (a hanging node's masters)
+      pv.clear();
+      for(Index v : m.hexahedra[c0]) add_work_vertex(v, pv, in_pv);
+      for(int ring = 0; ring < opt.patch_rings; ++ring) {
+        const std::size_t nr = pv.size();
+        for(std::size_t i = 0; i < nr; ++i) {
+          const Index v = pv[i];
+          for(Index k = cstart[v]; k < cstart[v + 1]; ++k)
+            for(Index w : m.hexahedra[cinc[k]]) add_work_vertex(w, pv, in_pv);
+        }
+      }
+      for(Index v : pv) in_pv[v] = 0;
+      if(pv.empty()) continue;
+      std::sort(pv.begin(), pv.end());
+      // the cells they move
+      pc.clear();
+      for(Index v : pv) {
+        affected_cells(v, cells);
+        for(Index c : cells) if(!in_pc[c]) { in_pc[c] = 1; pc.push_back(c); }
+      }
+      std::sort(pc.begin(), pc.end());
+      for(Index c : pc) in_pc[c] = 0;
+      vcells.assign(pv.size(), {});
+      for(std::size_t i = 0; i < pv.size(); ++i) {
+        affected_cells(pv[i], cells);
+        for(Index c : cells) vcells[i].push_back(Index(std::lower_bound(pc.begin(), pc.end(), c) - pc.begin()));
+      }
+      const std::size_t n = pv.size(), nc = pc.size();
+      q_old.resize(nc); sj_old.resize(nc); split_old_.resize(nc); split_ref.resize(nc);
+      cv.resize(nc * n_cell_values);
+      ev.resize(nc);
+      ev1.resize(nc);
+      double f0 = 1, e = 0;
+      sj_it = 1;
+      for(std::size_t j = 0; j < nc; ++j) {
+        split_ref[j] = 2 * opt.min_face_split_quality;   // (for this first penalty, not used)
+        ev[j] = evaluate(j, &cv[j * n_cell_values]);
+        q_old[j] = ev[j].q;
+        sj_old[j] = ev[j].sj;
+        split_old_[j] = ev[j].split;
+        split_ref[j] = (std::min)(split_old_[j], 2 * opt.min_face_split_quality);
+        ev[j] = evaluate(j, &cv[j * n_cell_values]);
+        e += ev[j].pen;
+        f0 = (std::min)(f0, q_old[j]);
+        sj_it = (std::min)(sj_it, sj_old[j]);
+      }
+      f_it = f0;
+      const std::size_t count0 = count_below();
+      const double nonortho_cap = (std::max)(opt.max_non_orthogonality, max_non_orthogonality(pc));
+      x0.resize(n);
+      for(std::size_t i = 0; i < n; ++i) x0[i] = P[pv[i]];
+      auto restore = [&](const std::vector<Vec3>& x) { for(std::size_t i = 0; i < n; ++i) move(pv[i], x[i]); };
+      g.resize(n);
+      xs.resize(n);
+      vals.resize(n_cell_values);
+      double alpha0 = 0.2;
+      int stalled = 0;
+      for(int it = 0; it < opt.patch_iterations && e > 0; ++it) {
+        // the constraints: the values within `slack` of their floor
+        active.clear();
+        active_start.assign(nc + 1, 0);
+        gbase.clear();
+        for(std::size_t j = 0; j < nc; ++j) {
+          active_start[j] = active.size();
+          const double* v = &cv[j * n_cell_values];
+          for(int k = 0; k < n_cell_values; ++k)
+            if(v[k] < floor_of(j, k) + slack) { active.push_back({Index(j), k}); gbase.push_back(v[k]); }
+        }
+        active_start[nc] = active.size();
+        const std::size_t na = active.size();
+        ga.assign(na * n, Vec3{{0, 0, 0}});   // their gradients, row by row
+        // the gradients (the penalty's and the constraints'), by forward differences (a vertex
+        // moves its own cells only) of constrained moves, per unit of the local size
+        for(std::size_t i = 0; i < n; ++i) {
+          const Index v = pv[i];
+          const Vec3 x = P[v];
+          const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+          const double eps = 1e-6 * h;
+          double base = 0;
+          for(Index j : vcells[i]) base += ev[j].pen;
+          for(int a = 0; a < 3; ++a) {
+            Vec3 y = x;
+            y[a] += eps;
+            move(v, constrain(v, y));   // along its surface or curve: the gradient is the constrained one
+            double p = 0;
+            for(Index j : vcells[i]) {
+              p += evaluate(j, vals.data()).pen;
+              for(std::size_t r = active_start[j]; r < active_start[j + 1]; ++r)
+                ga[r * n + i][a] = (vals[std::size_t(active[r].second)] - gbase[r]) / eps * h;
+            }
+            g[i][a] = (p - base) / eps * h;
+          }
+          move(v, x);
+        }
+        project_direction(g, ga, na, n);
+        double gmax = 0;
+        for(std::size_t i = 0; i < n; ++i) gmax = (std::max)(gmax, norm(g[i]));
+        if(!(gmax > 0)) break;
+        for(std::size_t i = 0; i < n; ++i) xs[i] = P[pv[i]];
+        // a backtracking line search, from twice the last step taken (at most 0.2 local sizes)
+        bool stepped = false;
+        for(double alpha = alpha0; alpha > 1e-3 && !stepped; alpha *= 0.5) {
+          for(std::size_t i = 0; i < n; ++i) {
+            const Index v = pv[i];
+            const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+            move(v, constrain(v, sub(xs[i], mul(g[i], alpha * h / gmax))));
+          }
+          double e1 = 0;
+          for(std::size_t j = 0; j < nc; ++j) { ev1[j] = evaluate(j, vals.data()); e1 += ev1[j].pen; }
+          if(e1 < e * (1 - 1e-6) && guards_hold(ev1) && max_non_orthogonality(pc) <= nonortho_cap) {
+            e = e1;
+            stepped = true;
+            alpha0 = (std::min)(0.2, 2 * alpha);
+          } else restore(xs);
+        }
+        if(!stepped) break;
+        const double f_before = f_it;
+        f_it = sj_it = 1;
+        for(std::size_t j = 0; j < nc; ++j) {
+          ev[j] = evaluate(j, &cv[j * n_cell_values]);
+          f_it = (std::min)(f_it, ev[j].q);
+          sj_it = (std::min)(sj_it, ev[j].sj);
+        }
+        // the worst cell no longer rising: done (the penalty's tail is not worth its cost)
+        stalled = f_it > f_before + 1e-4 ? 0 : stalled + 1;
+        if(stalled == opt.patch_stall) break;
+      }
+      double f1 = 1;
+      for(Index c : pc) f1 = (std::min)(f1, cell_quality(c));
+      if(f1 > f0 + 1e-4 && count_below() <= count0) ++kept;
+      else restore(x0);
+    }
+    use_polish = false;
+    return kept;
   }
 
   // A coarse cell's face split in four by a face node is written as four quarters meeting at
