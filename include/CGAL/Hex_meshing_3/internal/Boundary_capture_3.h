@@ -2366,6 +2366,10 @@ private:
         // the gradients (the penalty's and the constraints'), by forward differences (a vertex
         // moves its own cells only) of constrained moves, per unit of the local size
         for(std::size_t i = 0; i < n; ++i) {
+          // a vertex none of whose cells has a penalty or a constraint has no gradient
+          bool hot = false;
+          for(Index j : vcells[i]) hot = hot || ev[j].pen > 0 || active_start[j] < active_start[j + 1];
+          if(!hot) { g[i] = Vec3{{0, 0, 0}}; continue; }
           const Index v = pv[i];
           const Vec3 x = P[v];
           const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
