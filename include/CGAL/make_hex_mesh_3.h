@@ -143,9 +143,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       (the vertices of the cells around it move together, down the gradient of a soft minimum
  *       of their cells' qualities, under the same guards but that a cell below 0.35 may fall to
  *       the patch's current minimum; a patch is kept if its worst cell got better and its count
- *       of cells below 0.3 did not grow): the minimum below 0.35 cannot get worse, nor the
- *       count of cells whose scaled Jacobian is under 0.3 (OpenFOAM's non-orthogonality may rise
- *       a little)}
+ *       of cells whose scaled Jacobian is below 0.3 did not grow): neither the minimum below 0.35
+ *       nor the count of cells under 0.35 can get worse (OpenFOAM's non-orthogonality may rise a
+ *       little)}
  *     \cgalParamType{`bool`}
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd

@@ -184,7 +184,9 @@ inline double hex_face_split_quality(const Vec3* x)
 // a_k of `ga` (each n vectors, row by row), so that a step along -g lowers none of the
 // constrained values at first order. d = -g + sum_k lambda_k a_k with lambda >= 0 minimising
 // |d|^2 (the dual problem, a non-negative least squares), by projected Gauss-Seidel sweeps on
-// lambda, until no multiplier changes by more than 1e-12 relative or after `sweeps` sweeps.
+// lambda (Hildreth's method), until a sweep changes d by at most 1e-12 |g| or after `sweeps`
+// sweeps. Where rows are nearly dependent the convergence is slow, and a violation of 1e-5 to
+// 1e-3 |a| |g| may remain: the caller's guards catch it.
 inline void project_direction(std::vector<Vec3>& g, const std::vector<Vec3>& ga, std::size_t m, std::size_t n,
                               int sweeps = 200)
 {
@@ -2212,10 +2214,12 @@ private:
   // the sum of exp(k (t - v)) - 1 over the values v below t = `opt.patch_target`,
   // k = `opt.patch_sharpness`, the face splits rescaled so that min(2 x their floor, their value
   // before) counts as t. Guards, at every step, each cell against its value before the patch: its
-  // quality and scaled Jacobian not below min(that value, `opt.polish_quality`, the patch's
-  // minimum now) - a cell below 0.35 may fall to the patch's minimum, what the max-min trades -
-  // its face split not below min(that value, `opt.min_face_split_quality`), the patch's worst
-  // non-orthogonality not above max(its value, `opt.max_non_orthogonality`). The values within
+  // quality and scaled Jacobian not below `opt.polish_quality` if they were at or above it, else
+  // not below min(that value, the patch's minimum now) - a cell below 0.35 may fall to the
+  // patch's minimum, what the max-min trades; its face split not below min(that value,
+  // `opt.min_face_split_quality`); the patch's worst non-orthogonality not above max(its value,
+  // `opt.max_non_orthogonality`). So neither the minimum below 0.35 nor the count of cells under
+  // 0.35 can get worse (quality or scaled Jacobian). The values within
   // `slack` of their floor are constraints of the step: its direction is the gradient projected
   // so that none falls at first order (`project_direction()`). A step is taken if the penalty
   // falls and the guards hold (a backtracking line search); the patch stops after
@@ -2246,10 +2250,10 @@ private:
     std::vector<std::pair<Index, int>> active;   // the values near their floor: (cell in pc, value)
     std::vector<std::size_t> active_start;       // per cell in pc: its first entry in `active`
     double f_it = 0, sj_it = 0;                  // the patch's minimum quality and scaled Jacobian now
-    // what a cell's quality and scaled Jacobian may not fall below: min(its value, the polish's
-    // threshold, the patch's minimum now)
-    auto floor_q = [&](std::size_t j) { return (std::min)(q_old[j], (std::min)(opt.polish_quality, f_it)); };
-    auto floor_sj = [&](std::size_t j) { return (std::min)(sj_old[j], (std::min)(opt.polish_quality, sj_it)); };
+    // what a cell's quality and scaled Jacobian may not fall below: the polish's threshold if it
+    // was at or above it, else min(its value, the patch's minimum now)
+    auto floor_q = [&](std::size_t j) { return q_old[j] >= opt.polish_quality ? opt.polish_quality : (std::min)(q_old[j], f_it); };
+    auto floor_sj = [&](std::size_t j) { return sj_old[j] >= opt.polish_quality ? opt.polish_quality : (std::min)(sj_old[j], sj_it); };
     auto count_below = [&]() {
       std::size_t k = 0;
       for(Index c : pc) if(cell_sj(c) < opt.patch_floor) ++k;
