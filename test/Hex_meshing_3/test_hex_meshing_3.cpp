@@ -1616,7 +1616,7 @@ void test_body_fitted()
     assert(bf.mean_face_distance <= 0.15 * s);
     // the last step, the polish of the cells below 0.35 and its joint moves: against the same run
     // without them, the minimum below 0.35 and the count of cells under 0.35 are no worse, and
-    // the count falls (eight: min 0.2346 -> 0.2349, cells under 0.35 39 -> 22; fandisk: 0.105 ->
+    // the count falls (eight: min 0.2346 -> 0.2349, cells under 0.35 39 -> 20; fandisk: 0.105 ->
     // 0.123, 31 -> 19)
     auto below = [&](const Mesh& mesh, double& qmin_out) {
       std::size_t n = 0;

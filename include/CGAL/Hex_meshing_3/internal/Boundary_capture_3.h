@@ -368,7 +368,7 @@ public:
     double pillow_max_offset = 0.5;         ///< ... if their chain's vertices lie this close to the curve on average (x local size) before snapping
     double polish_quality = 0.35;           ///< the polish works on cells below this and keeps the others above it
     int polish_passes = 8;                  ///< sweeps of the polish at most
-    double patch_target = 0.5;              ///< the polish's joint moves (`polish_patches()`) penalise qualities below this
+    double patch_target = 0.4;              ///< the polish's joint moves (`polish_patches()`) penalise qualities below this
     int patch_iterations = 40;              ///< gradient steps of a patch at most (0: no joint moves)
     int patch_stall = 8;                    ///< ... stopped after this many steps without raising the patch's worst cell
     int patch_rings = 1;                    ///< ... on the vertices of the cells around the cell's (1), of the cells around those (2), ...
