@@ -552,12 +552,23 @@ private:
     for(std::size_t i = 0; i < hang_masters.size(); ++i)
       for(const auto& x : hang_masters[i]) deps[x.first].push_back(m.hanging_nodes[i].vertex);
     // neighbours: hex edges for volume vertices, top-face edges for surface vertices
+    // (each list gathered from the vertex's cells and stored at its size: pushed from the cells'
+    // edges, a list of 6 kept the capacity of 24 pushes, 40 MB on the motorBike)
     nbrs.assign(nv, {});
-    for(const auto& h : m.hexahedra)
-      for(const auto& e : hex_local_edges()) {
-        nbrs[h[e[0]]].push_back(h[e[1]]);
-        nbrs[h[e[1]]].push_back(h[e[0]]);
+    std::vector<Index> buf;
+    for(Index v = 0; v < nv; ++v) {
+      buf.clear();
+      for(Index k = cstart[v]; k < cstart[v + 1]; ++k) {
+        const auto& h = m.hexahedra[cinc[k]];
+        for(const auto& e : hex_local_edges()) {
+          if(h[e[0]] == v) buf.push_back(h[e[1]]);
+          else if(h[e[1]] == v) buf.push_back(h[e[0]]);
+        }
       }
+      std::sort(buf.begin(), buf.end());
+      buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
+      nbrs[v].assign(buf.begin(), buf.end());
+    }
     snbrs.assign(nv, {});
     for(std::size_t f : top_faces) {
       const auto& q = m.boundary_faces[f].vertices;
