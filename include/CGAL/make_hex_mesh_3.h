@@ -209,7 +209,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     visitor.on_phase_begin("capture", out.number_of_cells());
     typename Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features>::Options copt;
     copt.feature_pillows = choose_parameter(get_parameter(np, HNP::feature_pillows), false);
-    if(!choose_parameter(get_parameter(np, HNP::polish_worst_cells), true)) copt.polish_passes = 0;
+    if(!choose_parameter(get_parameter(np, HNP::polish_worst_cells), true)) copt.polish_passes = copt.patch_iterations = 0;
     Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> capture(out, domain, features, stats, copt);
     if(!capture.run(visitor)) status = Hex_meshing_3::Status::CANCELED;
     visitor.on_phase_end("capture");

@@ -74,14 +74,20 @@ inline void hex_scaled_jacobians(const Vec3* x, double* j)
   j[8] = det(X1, X2, X3, dot(X1, X1) * dot(X2, X2) * dot(X3, X3));
 }
 
+// the smallest of n values
+inline double min_of(const double* v, std::size_t n)
+{
+  double m = std::numeric_limits<double>::max();
+  for(std::size_t i = 0; i < n; ++i) m = (std::min)(m, v[i]);
+  return m;
+}
+
 // Verdict's scaled Jacobian of a hexahedron given as 8 corner vectors (VTK order)
 inline double hex_scaled_jacobian(const Vec3* x)
 {
   double j[9];
   hex_scaled_jacobians(x, j);
-  double sj = std::numeric_limits<double>::max();
-  for(double v : j) sj = (std::min)(sj, v);
-  return (std::max)(-1.0, (std::min)(1.0, sj));
+  return (std::max)(-1.0, (std::min)(1.0, min_of(j, 9)));
 }
 } // namespace internal
 

@@ -105,9 +105,7 @@ inline double hex_pyramid_quality(const Vec3* x)
 {
   double v[24];
   hex_pyramid_qualities(x, v);
-  double q = std::numeric_limits<double>::max();
-  for(double y : v) q = (std::min)(q, y);
-  return q;
+  return min_of(v, 24);
 }
 
 // The corner tetrahedron of a face at vertex p (its neighbours `next` and `prev` along the face,
@@ -175,9 +173,7 @@ inline double hex_face_split_quality(const Vec3* x)
 {
   double v[24];
   hex_face_split_qualities(x, v);
-  double q = std::numeric_limits<double>::max();
-  for(double y : v) q = (std::min)(q, y);
-  return q;
+  return min_of(v, 24);
 }
 
 // `g` (n vectors) becomes minus the direction d closest to -g with a_k . d >= 0 for the `m` rows
@@ -199,6 +195,9 @@ inline void project_direction(std::vector<Vec3>& g, const std::vector<Vec3>& ga,
     for(std::size_t i = 0; i < n; ++i) aa[k] += dot(ga[k * n + i], ga[k * n + i]);
     scale = (std::max)(scale, aa[k]);
   }
+  double gn = 0;
+  for(std::size_t i = 0; i < n; ++i) gn += dot(g[i], g[i]);
+  gn = std::sqrt(gn);
   for(int sweep = 0; sweep < sweeps; ++sweep) {
     double change = 0;
     for(std::size_t k = 0; k < m; ++k) {
@@ -212,9 +211,7 @@ inline void project_direction(std::vector<Vec3>& g, const std::vector<Vec3>& ga,
       for(std::size_t i = 0; i < n; ++i) d[i] = add(d[i], mul(ga[k * n + i], dl));
       change = (std::max)(change, std::abs(dl) * std::sqrt(aa[k]));
     }
-    double dn = 0;
-    for(std::size_t i = 0; i < n; ++i) dn += dot(g[i], g[i]);
-    if(change <= 1e-12 * std::sqrt(dn)) break;
+    if(change <= 1e-12 * gn) break;
   }
   for(std::size_t i = 0; i < n; ++i) g[i] = mul(d[i], -1);
 }
@@ -414,7 +411,7 @@ public:
     reduce_non_orthogonality();
     lap("repairs");
     if(!cancelled) polish();   // not needed for validity: a cancellation skips it
-    if(!cancelled && opt.polish_passes > 0 && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
+    if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
     lap("polish");
     assign_patches();
     release_work_data();
@@ -2265,9 +2262,9 @@ private:
     // was at or above it, else min(its value, the patch's minimum now)
     auto floor_q = [&](std::size_t j) { return q_old[j] >= opt.polish_quality ? opt.polish_quality : (std::min)(q_old[j], f_it); };
     auto floor_sj = [&](std::size_t j) { return sj_old[j] >= opt.polish_quality ? opt.polish_quality : (std::min)(sj_old[j], sj_it); };
-    auto count_below = [&]() {
+    auto count_below = [&]() {   // (from `ev`, the patch cells at their current places)
       std::size_t k = 0;
-      for(Index c : pc) if(cell_sj(c) < opt.patch_floor) ++k;
+      for(const auto& r : ev) if(r.sj < opt.patch_floor) ++k;
       return k;
     };
     auto floor_of = [&](std::size_t j, int k) {
@@ -2276,25 +2273,20 @@ private:
       if(k >= 33 && k < 57) return (std::min)(split_old_[j], opt.min_face_split_quality);
       return fq;
     };
-    // a cell's values into v, and from them its penalty, quality (as `cell_quality()` in the
-    // polish), scaled Jacobian and face split quality
-    auto evaluate = [&](std::size_t j, double* v) {
-      cell_values(pc[j], v);
+    // from a cell's values v: its penalty, quality (as `cell_quality()` in the polish), scaled
+    // Jacobian and face split quality
+    auto summarise = [&](std::size_t j, const double* v) {
       Eval r{0, 0, 0, 0};
-      double sj = v[0], q = 1, split = v[33];
       for(int k = 0; k < n_cell_values; ++k) {
-        const bool is_split = k >= 33 && k < 57;
-        if(k < 9) sj = (std::min)(sj, v[k]);
-        else if(is_split) split = (std::min)(split, v[k]);
-        else q = (std::min)(q, v[k]);
-        const double y = is_split ? t + (v[k] - split_ref[j]) * split_scale : v[k];
+        const double y = k >= 33 && k < 57 ? t + (v[k] - split_ref[j]) * split_scale : v[k];
         if(y < t) r.pen += std::expm1(k_sharp * (t - y));
       }
-      r.sj = (std::max)(-1.0, (std::min)(1.0, sj));
-      r.q = (std::min)(r.sj, q);
-      r.split = split;
+      r.sj = (std::max)(-1.0, (std::min)(1.0, min_of(v, 9)));
+      r.q = (std::min)(r.sj, (std::min)(min_of(v + 9, 24), min_of(v + 57, 6)));
+      r.split = min_of(v + 33, 24);
       return r;
     };
+    auto evaluate = [&](std::size_t j, double* v) { cell_values(pc[j], v); return summarise(j, v); };
     auto guards_hold = [&](const std::vector<Eval>& ev) {
       for(std::size_t j = 0; j < ev.size(); ++j)
         if(ev[j].q < floor_q(j) || ev[j].sj < floor_sj(j) || ev[j].split < (std::min)(split_old_[j], opt.min_face_split_quality))
@@ -2342,13 +2334,13 @@ private:
       double f0 = 1, e = 0;
       sj_it = 1;
       for(std::size_t j = 0; j < nc; ++j) {
-        split_ref[j] = 2 * opt.min_face_split_quality;   // (for this first penalty, not used)
-        ev[j] = evaluate(j, &cv[j * n_cell_values]);
+        double* v = &cv[j * n_cell_values];
+        cell_values(pc[j], v);
+        split_ref[j] = (std::min)(min_of(v + 33, 24), 2 * opt.min_face_split_quality);
+        ev[j] = summarise(j, v);
         q_old[j] = ev[j].q;
         sj_old[j] = ev[j].sj;
         split_old_[j] = ev[j].split;
-        split_ref[j] = (std::min)(split_old_[j], 2 * opt.min_face_split_quality);
-        ev[j] = evaluate(j, &cv[j * n_cell_values]);
         e += ev[j].pen;
         f0 = (std::min)(f0, q_old[j]);
         sj_it = (std::min)(sj_it, sj_old[j]);
@@ -2438,9 +2430,8 @@ private:
         stalled = f_it > f_before + 1e-4 ? 0 : stalled + 1;
         if(stalled == opt.patch_stall) break;
       }
-      double f1 = 1;
-      for(Index c : pc) f1 = (std::min)(f1, cell_quality(c));
-      if(f1 > f0 + 1e-4 && count_below() <= count0) ++kept;
+      // (`ev` is at the positions now: those of the last step taken, or of the start)
+      if(f_it > f0 + 1e-4 && count_below() <= count0) ++kept;
       else restore(x0);
     }
     use_polish = false;
