@@ -9,8 +9,9 @@
 //
 // 1. The staircase is prepared on the grid (see `staircase_cells_to_remove()`): cells with a
 //    corner on the surface side closer than `gap` x their size are removed (a buffer hex must have
-//    room), and so are the cells at a non-manifold vertex or edge of the staircase (a buffer
-//    vertex needs one outward side); both repeat with trimming until nothing changes.
+//    room); at a non-manifold vertex or edge of the staircase (a buffer vertex needs one outward
+//    side) the fewest cells that make it manifold go, the ones nearest to the surface first
+//    (`Octree_mesher_3::make_vertex_manifold()`); both repeat with trimming until nothing changes.
 // 2. Every vertex of a surface face of the staircase gets a twin, placed at its closest point on
 //    the surface (on a box plane, kept in it); each surface face (a,b,c,d) becomes the bottom of a
 //    buffer hex (a,b,c,d,a',b',c',d'), whose top is the new boundary face. The twin of a hanging
@@ -258,7 +259,8 @@ inline double hex_shape_energy(const Vec3* x, double delta2, Vec3* g = nullptr)
 template <typename HexMesh, typename Domain>
 std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Domain& domain, double gap,
                                                      std::size_t* too_close = nullptr,
-                                                     std::size_t* non_manifold = nullptr)
+                                                     std::size_t* non_manifold = nullptr,
+                                                     std::vector<std::uint32_t>* non_manifold_vertices = nullptr)
 {
   typedef std::uint32_t Index;
   const std::size_t nv = m.points.size();
@@ -317,11 +319,13 @@ std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Dom
       cur = found;
     }
     if(ok && visited != n) ok = false;
-    if(!ok) { bad_vertex[v] = 1; ++n_nm; }
+    if(!ok) { if(!bad_vertex[v]) bad_vertex[v] = 2; ++n_nm; }
   }
   std::vector<char> bad_cell(m.hexahedra.size(), 0);
   for(Index v = 0; v < nv; ++v) {
     if(!bad_vertex[v]) continue;
+    // a vertex only non-manifold goes to the caller, which removes as few cells as it can
+    if(non_manifold_vertices && bad_vertex[v] == 2) { non_manifold_vertices->push_back(v); continue; }
     for(Index k = start[v]; k < start[v + 1]; ++k) bad_cell[cells[k]] = 1;
     for(Index k = pstart[v]; k < pstart[v + 1]; ++k) bad_cell[m.boundary_faces[pinc[k]].cell] = 1;
   }
