@@ -198,6 +198,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
   Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor, body_fitted ? buffer_gap : 0.0);
   Hex_meshing_3::Meshing_statistics stats = mesher.statistics();
+  mesher.release();   // the capture's memory peak need not hold the octree too
   if(body_fitted && status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
     typedef Hex_meshing_3::Feature_curves_3<GT> Features;
     std::unique_ptr<Features> own;

@@ -570,7 +570,7 @@ int main(int argc, char** argv)
       const std::vector<char> ft = HM::face_tet_errors(x, pm, g);
       foam_face_tets = std::size_t(std::count(ft.begin(), ft.end(), char(1)));
     }
-    const HM::Mesh_quality q = HM::compute_quality(bulged.points.empty() ? mesh : bulged, pm);
+    HM::Mesh_quality q = HM::compute_quality(bulged.points.empty() ? mesh : bulged, pm);
     const double t_quality = since(t);
     const auto sj = HM::Mesh_quality::range(q.scaled_jacobian);
     const auto no = HM::Mesh_quality::range(q.non_orthogonality);
@@ -600,6 +600,7 @@ int main(int argc, char** argv)
     }
     const double t_write = since(t);
     const double total = since(t_start);
+    bulged = Mesh();   // written: the report's measures below run on `mesh`
     const std::size_t nboundary = mesh.boundary_faces.size();
 
     if(!quiet) {
@@ -655,6 +656,26 @@ int main(int argc, char** argv)
                      {"hanging_nodes", mesh.hanging_nodes.size()}, {"boundary_faces", nboundary},
                      {"polyhedral_faces", pm.faces.size()}, {"internal_faces", pm.number_of_internal_faces()}};
       j["volume"] = volume;
+      // what needs the polyhedral mesh and the per-cell and per-face quality comes first; they
+      // are freed before the fidelity builds its trees (the run's memory peak)
+      nlohmann::ordered_json jquality;
+      {
+        auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
+        jquality = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
+        add_quality_details(jquality, mesh, pm, q);
+        // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
+        jquality["concave_cells"] = foam_concave;
+        jquality["face_tet_errors"] = foam_face_tets;
+      }
+      const HM::Surface_topology boundary_topology = HM::boundary_topology(pm);
+      std::vector<char> box_patch(mesh.patch_names.size(), 0);
+      for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
+        box_patch[p] = std::find(box_patch_names.begin(), box_patch_names.end(), mesh.patch_names[p]) != box_patch_names.end();
+      const HM::Box_contacts bc = HM::box_contacts(mesh, pm, domain, box_patch);
+      pm = HM::Polyhedral_mesh_3();
+      for(auto* v : {&q.aspect_ratio, &q.non_orthogonality, &q.skewness, &q.cell_volume, &q.face_warpage})
+        std::vector<double>().swap(*v);   // the HTML report still draws the scaled Jacobian
+      std::vector<char>().swap(q.concave);
       {
         const auto tf = std::chrono::steady_clock::now();
         const HM::Boundary_fidelity fid = HM::boundary_fidelity(mesh, domain, 10000);
@@ -696,13 +717,9 @@ int main(int argc, char** argv)
                                         {"vertices", t.vertices}, {"edges", t.edges}, {"faces", t.faces},
                                         {"boundary_edges", t.boundary_edges}};
         };
-        j["topology"] = {{"input", tj(HM::surface_topology(domain))}, {"mesh_boundary", tj(HM::boundary_topology(pm))}};
+        j["topology"] = {{"input", tj(HM::surface_topology(domain))}, {"mesh_boundary", tj(boundary_topology)}};
         // where a body touches or crosses a box face: the holes of the box patches, the body's
-        // section and the filled wedge around it
-        std::vector<char> box_patch(mesh.patch_names.size(), 0);
-        for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
-          box_patch[p] = std::find(box_patch_names.begin(), box_patch_names.end(), mesh.patch_names[p]) != box_patch_names.end();
-        const HM::Box_contacts bc = HM::box_contacts(mesh, pm, domain, box_patch);
+        // section and the filled wedge around it (`bc`, above)
         const auto& box_names = HM::box_face_names();
         nlohmann::ordered_json jfaces = nlohmann::ordered_json::array(), jc = nlohmann::ordered_json::array();
         for(int p = 0; p < 6; ++p)
@@ -779,12 +796,7 @@ int main(int argc, char** argv)
                      {"seconds", grid_seconds},
                      {"leaf_cells_per_second", grid_seconds > 0 ? double(leaves) / grid_seconds : 0.0}};
       }
-      auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
-      j["quality"] = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
-      add_quality_details(j["quality"], mesh, pm, q);
-      // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
-      j["quality"]["concave_cells"] = foam_concave;
-      j["quality"]["face_tet_errors"] = foam_face_tets;
+      j["quality"] = std::move(jquality);
       j["outputs"] = outputs;
       for(const std::string& r : reports) {
         std::ofstream os(r);

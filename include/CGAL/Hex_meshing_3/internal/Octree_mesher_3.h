@@ -123,6 +123,16 @@ public:
   {}
 
   const Statistics& statistics() const { return m_stats; }
+  /// frees the octree (its nodes, their triangle lists): after `run()`, only the statistics and
+  /// the leaks are read (the body-fitted capture runs on the extracted mesh)
+  void release()
+  {
+    std::vector<Node>().swap(m_nodes);
+    std::vector<std::vector<std::uint32_t>>().swap(m_lists);
+    std::vector<std::uint32_t>().swap(m_free_list);
+    std::vector<std::vector<std::uint32_t>>().swap(m_by_level);
+    std::vector<int>().swap(m_component);
+  }
   /// leaks of the seeded region found by the last run, largest first
   const std::vector<Region_leak>& leaks() const { return m_leaks; }
 
