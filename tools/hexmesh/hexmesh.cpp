@@ -14,6 +14,9 @@
 #include <CGAL/Hex_meshing_3/fidelity.h>
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
+#if defined(__GLIBC__)
+#include <malloc.h>   // malloc_trim
+#endif
 #include <CGAL/Hex_meshing_3/IO/write_MSH.h>
 #include <CGAL/Hex_meshing_3/IO/write_Medit.h>
 #include <CGAL/Hex_meshing_3/IO/write_OpenFOAM.h>
@@ -362,6 +365,9 @@ int main(int argc, char** argv)
     Domain domain(soup);
     const double t_repair = since(t);
     soup = HM::IO::Surface_soup<Point_3>();
+#if defined(__GLIBC__)
+    malloc_trim(0);   // the soup and the repair's work arrays were many small blocks
+#endif
     const auto& sum = domain.input_summary();
     std::vector<std::string> repairs;
     auto note = [&](std::size_t n, const std::string& what) { if(n) repairs.push_back(std::to_string(n) + " " + what); };
