@@ -589,6 +589,20 @@ int main(int argc, char** argv)
     double volume = 0;
     for(double v : q.cell_volume) volume += v;
 
+    // the report's quality details first: the per-face quality arrays are freed before the
+    // outputs are written (the writers' work arrays come on top of the rest)
+    nlohmann::ordered_json jquality;
+    if(!reports.empty()) {
+      auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
+      jquality = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
+      add_quality_details(jquality, mesh, pm, q);
+      // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
+      jquality["concave_cells"] = foam_concave;
+      jquality["face_tet_errors"] = foam_face_tets;
+    }
+    for(auto* v : {&q.aspect_ratio, &q.non_orthogonality, &q.skewness, &q.cell_volume, &q.face_warpage})
+      std::vector<double>().swap(*v);   // the VTU and the HTML report still need the scaled Jacobian
+    std::vector<char>().swap(q.concave);
     t = std::chrono::steady_clock::now();
     for(const std::string& o : outputs) {
       bool ok = false;
@@ -664,24 +678,12 @@ int main(int argc, char** argv)
       j["volume"] = volume;
       // what needs the polyhedral mesh and the per-cell and per-face quality comes first; they
       // are freed before the fidelity builds its trees (the run's memory peak)
-      nlohmann::ordered_json jquality;
-      {
-        auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
-        jquality = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
-        add_quality_details(jquality, mesh, pm, q);
-        // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
-        jquality["concave_cells"] = foam_concave;
-        jquality["face_tet_errors"] = foam_face_tets;
-      }
       const HM::Surface_topology boundary_topology = HM::boundary_topology(pm);
       std::vector<char> box_patch(mesh.patch_names.size(), 0);
       for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)
         box_patch[p] = std::find(box_patch_names.begin(), box_patch_names.end(), mesh.patch_names[p]) != box_patch_names.end();
       const HM::Box_contacts bc = HM::box_contacts(mesh, pm, domain, box_patch);
       pm = HM::Polyhedral_mesh_3();
-      for(auto* v : {&q.aspect_ratio, &q.non_orthogonality, &q.skewness, &q.cell_volume, &q.face_warpage})
-        std::vector<double>().swap(*v);   // the HTML report still draws the scaled Jacobian
-      std::vector<char>().swap(q.concave);
       {
         const auto tf = std::chrono::steady_clock::now();
         const HM::Boundary_fidelity fid = HM::boundary_fidelity(mesh, domain, 10000);
