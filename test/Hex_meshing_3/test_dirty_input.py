@@ -149,6 +149,11 @@ NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_no
 # the issue's quality goals, where they are met at those sizes: min scaled Jacobian >= 0.3, and
 # max non-orthogonality <= 65 degrees (elephant-with-holes: 73 at its capped holes)
 MIN_SJ_03 = {"cube", "cube_nonmanifold", "cylinder", "eight", "fin_slot", "rotor", "t20_part"}
+# where the goal is not met yet: regression guards a little below the figures of 2026-12-02
+# (anchor rose from 0.157 to 0.287 when the staircase stopped digging notches at non-manifold
+# vertices)
+MIN_SJ_FLOOR = {"anchor": 0.28, "anchor_dupflip": 0.28, "bunny": 0.24, "fandisk": 0.24, "teapot": 0.17,
+                "elephant": 0.05, "fandisk_crack": 0.025}
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
                 "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part", "teapot"}
 SAME_TOPOLOGY = {"anchor", "cube", "eight", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
@@ -743,6 +748,8 @@ def main():
                                       f"max non-orthogonality {no:.1f} < 80 deg")
         if stem in MIN_SJ_03:
             check(sj >= 0.3, f"{stem}: min scaled Jacobian {sj:.3g} >= 0.3 (the goal)")
+        if stem in MIN_SJ_FLOOR:
+            check(sj >= MIN_SJ_FLOOR[stem], f"{stem}: min scaled Jacobian {sj:.3g} >= {MIN_SJ_FLOOR[stem]} (no regression; the goal is 0.3)")
         if stem in NON_ORTHO_65:
             check(no <= 65, f"{stem}: max non-orthogonality {no:.1f} <= 65 deg (the goal)")
         rc = run(["checkMesh", "-case", case, "-allTopology"], env=env)
