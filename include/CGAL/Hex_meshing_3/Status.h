@@ -132,6 +132,7 @@ struct Meshing_statistics
   std::size_t polish_patches = 0; ///< the polish's joint moves kept: patches around a cell below 0.3 whose worst cell got better
   std::size_t split_warp_repairs = 0;       ///< vertex moves of the repair of warped faces split in four (concave for OpenFOAM)
   std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
+  std::size_t non_orthogonal_faces = 0;     ///< faces non-orthogonal beyond 70 degrees found after the repairs (the buffer cells at them removed)
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
   /// where a feature chain turns inside a face (two of its edges in a row): the middle vertex is

@@ -402,6 +402,7 @@ public:
     double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
     double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
     double max_skewness = 3.5;         ///< buffer cells at a face more skewed than this are removed (OpenFOAM fails > 4)
+    double removal_non_orthogonality = 70;   ///< ... or more non-orthogonal than this after the repairs, in degrees (checkMesh: "severely non-orthogonal")
     double min_face_split_quality = 0.05;   ///< cells whose faces split worse than this are repaired last
     int face_split_passes = 4;              ///< sweeps of that repair (and of the split-face warp's)
     double max_split_face_warp = 0.05;      ///< faces split in four warped beyond this (x edge) are repaired last
@@ -463,22 +464,27 @@ public:
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
     for(std::size_t v = 0; v < P.size(); ++v) m.points[v] = Point_3(P[v][0], P[v][1], P[v][2]);
-    // OpenFOAM rejects faces skewed beyond 4: the buffer cells at such a face go too (a few
-    // rounds: a removal changes the faces around it)
+    // OpenFOAM rejects faces skewed beyond 4: the buffer cells at such a face go too, and those at
+    // a face the repairs left beyond 70 degrees of non-orthogonality (checkMesh's "severely
+    // non-orthogonal"; the goal is 65) (a few rounds: a removal changes the faces around it)
     for(int round = 0; round < 8; ++round) {
       Polyhedral_mesh_3 pm;
       pm.build(m);
       OpenFOAM_geometry g;
       g.compute(m.points, pm);
-      std::vector<double> skewness;
-      face_non_orthogonality_and_skewness(m.points, pm, g, nullptr, skewness);
+      std::vector<double> skewness, non_orthogonality;
+      face_non_orthogonality_and_skewness(m.points, pm, g, &non_orthogonality, skewness);
       const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
       std::vector<Index> extra;
       for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-        if(!(skewness[f] > opt.max_skewness)) continue;
-        ++rep.skewed_faces;
-        if(pm.owner[f] >= first) extra.push_back(pm.owner[f]);
-        if(f < pm.neighbour.size() && pm.neighbour[f] >= first) extra.push_back(pm.neighbour[f]);
+        const bool skewed = skewness[f] > opt.max_skewness;
+        const bool non_orthogonal = f < non_orthogonality.size() && non_orthogonality[f] > opt.removal_non_orthogonality;
+        if(!skewed && !non_orthogonal) continue;
+        const bool own = pm.owner[f] >= first, nei = f < pm.neighbour.size() && pm.neighbour[f] >= first;
+        if(skewed) ++rep.skewed_faces;
+        else if(own || nei) ++rep.non_orthogonal_faces;   // (between grid cells: left to the report)
+        if(own) extra.push_back(pm.owner[f]);
+        if(nei) extra.push_back(pm.neighbour[f]);
       }
       if(extra.empty()) break;
       remove_invalid_buffer_cells(extra);
