@@ -54,7 +54,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  * `body_fitted(false)` is given, the boundary is fitted to the surface (HEXPRESS-style):
  * - refinement splits, with every cut cell, the cells of its level around it (so the staircase
  *   next to the surface has the surface size); the staircase keeps its surface vertices at least
- *   0.4 x their cell size away from the surface and is made manifold (cells removed, then trimmed);
+ *   0.4 x their cell size away from the surface (the cells at a closer vertex removed, then
+ *   trimmed) and is made manifold: at a non-manifold vertex the fewest cells that make its 2x2x2
+ *   block well-composed are removed, those nearest to the surface first;
  * - a buffer layer of hexahedra joins each staircase face on the surface to its image on the
  *   surface (closest point, or the point along the staircase normal where the closest point lies
  *   behind a staircase face; kept in the box planes it touches); a hanging midpoint of a staircase
@@ -66,7 +68,8 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   pyramid quality) of their cells, never making a valid cell invalid; curve vertices of cells
  *   still inverted return to the surface, then surface vertices are released into the volume
  *   (reported in the statistics as unreached), and buffer cells still below 0.02 are removed
- *   (their staircase face is the boundary there); before that removal, the cells of faces that cannot be cut
+ *   (their staircase face is the boundary there), as are those at a face OpenFOAM would find
+ *   skewed beyond 3.5 or non-orthogonal beyond 70 degrees; before that removal, the cells of faces that cannot be cut
  *   into positive tetrahedra with both cell centres (OpenFOAM's "face tets") are moved until
  *   they can, where their scaled Jacobian and non-orthogonality allow. Every cell of the result
  *   has a positive scaled Jacobian.

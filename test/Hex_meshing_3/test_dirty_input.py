@@ -148,12 +148,12 @@ NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_no
                                     "fin_slot", "t20_part"}
 # the issue's quality goals, where they are met at those sizes: min scaled Jacobian >= 0.3, and
 # max non-orthogonality <= 65 degrees
-MIN_SJ_03 = {"cube", "cube_nonmanifold", "cylinder", "eight", "fin_slot", "rotor", "t20_part"}
-# where the goal is not met yet: regression guards a little below the figures of 2026-12-02
-# (anchor rose from 0.157 to 0.287 when the staircase stopped digging notches at non-manifold
+# (anchor rose from 0.157 to 0.302 when the staircase stopped digging notches at non-manifold
 # vertices)
-MIN_SJ_FLOOR = {"anchor": 0.28, "anchor_dupflip": 0.28, "bunny": 0.24, "fandisk": 0.24, "teapot": 0.17,
-                "elephant": 0.05, "fandisk_crack": 0.025}
+MIN_SJ_03 = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight", "fin_slot", "rotor",
+             "t20_part"}
+# where the goal is not met yet: regression guards a little below the figures of 2026-12-02
+MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.245, "teapot": 0.17, "elephant": 0.05, "fandisk_crack": 0.025}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",

@@ -721,9 +721,13 @@ public:
       std::vector<std::uint32_t> kept;   // mesh cell i = the i-th kept leaf in node order
       for(std::uint32_t id = 0; id < m_nodes.size(); ++id)
         if(m_nodes[id].is_leaf() && (m_nodes[id].flags & KEPT)) kept.push_back(id);
+      // which blocks were octant cases as extracted (removals below may repair a block first)
+      std::vector<char> octant_case(nm_vertices.size());
+      for(std::size_t i = 0; i < nm_vertices.size(); ++i) octant_case[i] = !well_composed(tmp.points[nm_vertices[i]]);
       for(std::uint32_t c : bad) m_nodes[kept[c]].flags &= std::uint8_t(~KEPT);
       m_stats.staircase_removed_cells += bad.size();
-      for(std::uint32_t v : nm_vertices) m_stats.staircase_removed_cells += make_vertex_manifold(tmp.points[v]);
+      for(std::size_t i = 0; i < nm_vertices.size(); ++i)
+        m_stats.staircase_removed_cells += make_vertex_manifold(tmp.points[nm_vertices[i]], octant_case[i] != 0);
       trim();
       if(seed) keep_seed_component(seed_cell);
       m_stats.kept_cells = 0;
@@ -732,22 +736,55 @@ public:
     }
   }
 
-  // The kept cells around a grid vertex where the staircase is not manifold: the 8 octants
-  // around it (each in one leaf, a coarse leaf may hold several) must form, kept and not kept, two
-  // face-connected sets (a well-composed 2x2x2 block; the staircase is then a disk there). The
-  // fewest kept leaves whose removal does it go, those nearest to the surface first, so the
-  // staircase does not retreat into the part (removing every cell at the vertex, then at the new
-  // ones, dug notches two or three cells deep). Returns the number of leaves removed.
-  std::size_t make_vertex_manifold(const Point_3& p)
+  // the leaves holding the 8 octants around the grid point `p` (NONE outside the box)
+  void octant_leaves(const Point_3& p, std::array<std::uint32_t, 8>& leaf) const
   {
     std::int64_t key[3];
     for(int a = 0; a < 3; ++a) {
       const double K = double(std::uint64_t(m_n[a]) << m_D);
       key[a] = std::llround((CGAL::to_double(p[a]) - m_lo[a]) / (m_hi[a] - m_lo[a]) * K);
     }
-    std::array<std::uint32_t, 8> leaf;
     for(int o = 0; o < 8; ++o)
       leaf[o] = find(m_D, key[0] - 1 + (o & 1), key[1] - 1 + ((o >> 1) & 1), key[2] - 1 + ((o >> 2) & 1));
+  }
+
+  // whether the kept octants around `p` and the others are each face-connected
+  static bool octants_connected(unsigned set)
+  {
+    if(set == 0) return true;
+    unsigned reached = set & (~set + 1), grow = reached;   // from the lowest octant
+    while(grow) {
+      unsigned next = 0;
+      for(int o = 0; o < 8; ++o)
+        if((grow >> o) & 1) next |= (1u << (o ^ 1)) | (1u << (o ^ 2)) | (1u << (o ^ 4));
+      next &= set & ~reached;
+      reached |= next;
+      grow = next;
+    }
+    return reached == set;
+  }
+  bool well_composed(const Point_3& p) const
+  {
+    std::array<std::uint32_t, 8> leaf;
+    octant_leaves(p, leaf);
+    unsigned set = 0;
+    for(int o = 0; o < 8; ++o) if(leaf[o] != NONE && (m_nodes[leaf[o]].flags & KEPT)) set |= 1u << o;
+    return octants_connected(set) && octants_connected(~set & 0xffu);
+  }
+
+  // The kept cells around a grid vertex where the staircase is not manifold: the 8 octants
+  // around it (each in one leaf, a coarse leaf may hold several) must form, kept and not kept, two
+  // face-connected sets (a well-composed 2x2x2 block; the staircase is then a disk there). The
+  // fewest kept leaves whose removal does it go, those nearest to the surface first, so the
+  // staircase does not retreat into the part (removing every cell at the vertex, then at the new
+  // ones, dug notches two or three cells deep). A block that an earlier removal of the round made
+  // well-composed is left alone if it was not so as extracted (`octant_case`); one that was
+  // (the polygons' test found another fault) loses all its kept leaves, the former rule.
+  // Returns the number of leaves removed.
+  std::size_t make_vertex_manifold(const Point_3& p, bool octant_case)
+  {
+    std::array<std::uint32_t, 8> leaf;
+    octant_leaves(p, leaf);
     std::vector<std::uint32_t> cand;   // the kept leaves around the vertex, in octant order
     for(int o = 0; o < 8; ++o)
       if(leaf[o] != NONE && (m_nodes[leaf[o]].flags & KEPT) && std::find(cand.begin(), cand.end(), leaf[o]) == cand.end())
@@ -759,19 +796,9 @@ public:
           if(leaf[o] == cand[i] && !((removed >> i) & 1)) set |= 1u << o;
       return set;
     };
-    auto connected = [](unsigned set) {
-      if(set == 0) return true;
-      unsigned reached = set & (~set + 1), grow = reached;   // from the lowest octant
-      while(grow) {
-        unsigned next = 0;
-        for(int o = 0; o < 8; ++o)
-          if((grow >> o) & 1) next |= (1u << (o ^ 1)) | (1u << (o ^ 2)) | (1u << (o ^ 4));
-        next &= set & ~reached;
-        reached |= next;
-        grow = next;
-      }
-      return reached == set;
-    };
+    auto connected = [](unsigned set) { return octants_connected(set); };
+    const bool composed_now = connected(octants(0)) && connected(~octants(0) & 0xffu);
+    if(composed_now && octant_case) return 0;   // repaired by an earlier removal of this round
     std::vector<double> dist(cand.size());
     for(std::size_t i = 0; i < cand.size(); ++i)
       dist[i] = CGAL::to_double(m_domain.squared_distance(make_cell(m_nodes[cand[i]]).center()));
@@ -779,7 +806,7 @@ public:
     unsigned best = all;
     int best_count = int(cand.size()) + 1;
     double best_dist = 0;
-    for(unsigned r = 1; r <= all; ++r) {   // nothing removed: the octants say manifold, the polygons not
+    for(unsigned r = 1; r <= all; ++r) {
       const unsigned k = octants(r);
       if(!connected(k) || !connected(~k & 0xffu)) continue;
       int count = 0;
@@ -787,7 +814,7 @@ public:
       for(std::size_t i = 0; i < cand.size(); ++i) if((r >> i) & 1) { ++count; d += std::sqrt(dist[i]); }
       if(count < best_count || (count == best_count && d < best_dist)) { best = r; best_count = count; best_dist = d; }
     }
-    if(connected(octants(0)) && connected(~octants(0) & 0xffu)) best = all;   // not an octant case: the old rule
+    if(composed_now) best = all;   // not an octant case: the former rule
     std::size_t removed = 0;
     for(std::size_t i = 0; i < cand.size(); ++i)
       if((best >> i) & 1) { m_nodes[cand[i]].flags &= std::uint8_t(~KEPT); ++removed; }
