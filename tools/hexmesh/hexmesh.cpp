@@ -567,14 +567,16 @@ int main(int argc, char** argv)
     {
       const auto x = HM::IO::internal::foam_points(mesh, HM::IO::default_hanging_bulge, &pm,
                                                    HM::IO::default_max_hanging_bulge, &foam_concave);
-      if(foam_output && mesh.has_hanging_nodes()) {
+      {
+        HM::OpenFOAM_geometry g;
+        g.compute(x, pm);
+        const std::vector<char> ft = HM::face_tet_errors(x, pm, g);
+        foam_face_tets = std::size_t(std::count(ft.begin(), ft.end(), char(1)));
+      }
+      if(foam_output && mesh.has_hanging_nodes()) {   // (after the geometry is freed: a memory peak)
         bulged = mesh;
         for(std::size_t v = 0; v < x.size(); ++v) bulged.points[v] = K::Point_3(x[v][0], x[v][1], x[v][2]);
       }
-      HM::OpenFOAM_geometry g;
-      g.compute(x, pm);
-      const std::vector<char> ft = HM::face_tet_errors(x, pm, g);
-      foam_face_tets = std::size_t(std::count(ft.begin(), ft.end(), char(1)));
     }
     HM::Mesh_quality q = HM::compute_quality(bulged.points.empty() ? mesh : bulged, pm);
     const double t_quality = since(t);
