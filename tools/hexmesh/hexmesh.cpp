@@ -555,6 +555,7 @@ int main(int argc, char** argv)
     }
 
     t = std::chrono::steady_clock::now();
+    domain.release_search_tree();   // the quality measures make no surface query: the memory peak
     HM::Polyhedral_mesh_3 pm;
     pm.build(mesh);
     // an OpenFOAM case gets its hanging nodes bulged slightly (write_OpenFOAM): the quality is

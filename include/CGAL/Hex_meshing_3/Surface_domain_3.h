@@ -294,6 +294,10 @@ public:
     return winding_number(p) >= 0.5;
   }
 
+  /// frees the search tree of the distance and ray queries (built by the first such query; the
+  /// next one builds it again): for a step that makes no query and needs the memory
+  void release_search_tree() const { m_tree.reset(); }
+
   /// the point of the surface nearest to `p`
   Point_3 closest_point(const Point_3& p) const { return tree().closest_point(p); }
   /// the index of a triangle nearest to `p`
