@@ -679,8 +679,8 @@ int main(int argc, char** argv)
                      {"hanging_nodes", mesh.hanging_nodes.size()}, {"boundary_faces", nboundary},
                      {"polyhedral_faces", pm.faces.size()}, {"internal_faces", pm.number_of_internal_faces()}};
       j["volume"] = volume;
-      // what needs the polyhedral mesh and the per-cell and per-face quality comes first; they
-      // are freed before the fidelity builds its trees (the run's memory peak)
+      // what needs the polyhedral mesh comes first: it is freed before the fidelity builds its
+      // trees
       const HM::Surface_topology boundary_topology = HM::boundary_topology(pm);
       std::vector<char> box_patch(mesh.patch_names.size(), 0);
       for(std::size_t p = 0; p < mesh.patch_names.size(); ++p)

@@ -47,6 +47,7 @@ public:
     const Index* begin() const { return first; }
     const Index* end() const { return last; }
     std::size_t size() const { return std::size_t(last - first); }
+    bool empty() const { return first == last; }
     Index operator[](std::size_t k) const { return first[k]; }
   };
   struct const_iterator
@@ -80,6 +81,8 @@ public:
     start_.push_back(vertices_.size());
   }
   void reserve(std::size_t polygons, std::size_t vertices) { start_.reserve(polygons + 1); vertices_.reserve(vertices); }
+  void shrink_to_fit() { start_.shrink_to_fit(); vertices_.shrink_to_fit(); }
+  void swap(Polygon_list& o) { vertices_.swap(o.vertices_); start_.swap(o.start_); }
   bool operator==(const Polygon_list& o) const { return start_ == o.start_ && vertices_ == o.vertices_; }
   bool operator!=(const Polygon_list& o) const { return !(*this == o); }
 

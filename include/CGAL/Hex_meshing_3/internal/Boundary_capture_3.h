@@ -256,46 +256,29 @@ inline double hex_shape_energy(const Vec3* x, double delta2, Vec3* g = nullptr)
   return e;
 }
 
-// Lists per vertex stored end to end (compressed rows): a vector of vectors costs a 24-byte
-// header per vertex and an allocation per non-empty list (the capture's neighbour lists on the
-// motorBike: tens of MB). Built once from (row, item) pairs; read only.
-template <typename T>
-struct Compressed_lists
+// Lists per vertex stored end to end (a `Polygon_list`; a vector per vertex costs a 24-byte header
+// and an allocation each: tens of MB for the capture's lists on the motorBike): rows 0..n-1 from
+// (row, item) pairs, each row's items in the order of the pairs, or sorted and without repeats
+// if `unique`
+inline Polygon_list lists_from_pairs(std::size_t n, std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, bool unique)
 {
-  struct Row
-  {
-    const T* first = nullptr;
-    const T* last = nullptr;
-    const T* begin() const { return first; }
-    const T* end() const { return last; }
-    std::size_t size() const { return std::size_t(last - first); }
-    bool empty() const { return first == last; }
-    const T& operator[](std::size_t i) const { return first[i]; }
-  };
-  std::vector<std::size_t> start{0};
-  std::vector<T> items;
-
-  std::size_t size() const { return start.size() - 1; }
-  Row operator[](std::size_t r) const { return {items.data() + start[r], items.data() + start[r + 1]}; }
-  static Row row_of(const std::vector<T>& v) { return {v.data(), v.data() + v.size()}; }
-  // rows 0..n-1 from (row, item) pairs, each row's items in the order of the pairs, or sorted and
-  // without repeats if `unique`
-  void assign(std::size_t n, std::vector<std::pair<std::uint32_t, T>>& pairs, bool unique)
-  {
-    if(unique) {
-      std::sort(pairs.begin(), pairs.end());
-      pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    } else {
-      std::stable_sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    }
-    start.assign(n + 1, 0);
-    for(const auto& x : pairs) ++start[x.first + 1];
-    for(std::size_t r = 0; r < n; ++r) start[r + 1] += start[r];
-    items.resize(pairs.size());
-    for(std::size_t i = 0; i < pairs.size(); ++i) items[i] = pairs[i].second;
+  if(unique) {
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  } else {
+    std::stable_sort(pairs.begin(), pairs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   }
-  void swap(Compressed_lists& o) { start.swap(o.start); items.swap(o.items); }
-};
+  Polygon_list L;
+  L.reserve(n, pairs.size());
+  std::vector<std::uint32_t> row;
+  std::size_t i = 0;
+  for(std::size_t r = 0; r < n; ++r) {
+    row.clear();
+    for(; i < pairs.size() && pairs[i].first == r; ++i) row.push_back(pairs[i].second);
+    L.push_back(row.begin(), row.end());
+  }
+  return L;
+}
 
 template <typename HexMesh, typename Domain>
 std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Domain& domain, double gap,
@@ -599,39 +582,36 @@ private:
     std::vector<std::pair<Index, Index>> pairs;
     for(std::size_t i = 0; i < hang_masters.size(); ++i)
       for(const auto& x : hang_masters[i]) pairs.push_back({x.first, m.hanging_nodes[i].vertex});
-    deps.assign(nv, pairs, false);
-    // neighbours: hex edges for volume vertices, top-face edges for surface vertices
-    {
-      std::vector<Index> buf;
-      Compressed_lists<Index> L;
-      L.start.reserve(nv + 1);
-      for(Index v = 0; v < nv; ++v) {
-        buf.clear();
-        for(Index k = cstart[v]; k < cstart[v + 1]; ++k) {
-          const auto& h = m.hexahedra[cinc[k]];
-          for(const auto& e : hex_local_edges()) {
-            if(h[e[0]] == v) buf.push_back(h[e[1]]);
-            else if(h[e[1]] == v) buf.push_back(h[e[0]]);
-          }
+    deps = lists_from_pairs(nv, pairs, false);
+    // neighbours: hex edges for volume vertices (gathered per vertex from its cells: pairs from
+    // every cell's edges would take 24 per cell), top-face edges for surface vertices
+    nbrs = Polygon_list();
+    nbrs.reserve(nv, 0);
+    std::vector<Index> buf;
+    for(Index v = 0; v < nv; ++v) {
+      buf.clear();
+      for(Index k = cstart[v]; k < cstart[v + 1]; ++k) {
+        const auto& h = m.hexahedra[cinc[k]];
+        for(const auto& e : hex_local_edges()) {
+          if(h[e[0]] == v) buf.push_back(h[e[1]]);
+          else if(h[e[1]] == v) buf.push_back(h[e[0]]);
         }
-        std::sort(buf.begin(), buf.end());
-        buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
-        L.items.insert(L.items.end(), buf.begin(), buf.end());
-        L.start.push_back(L.items.size());
       }
-      L.items.shrink_to_fit();
-      nbrs.swap(L);
+      std::sort(buf.begin(), buf.end());
+      buf.erase(std::unique(buf.begin(), buf.end()), buf.end());
+      nbrs.push_back(buf.begin(), buf.end());
     }
+    nbrs.shrink_to_fit();
     pairs.clear();
     for(std::size_t f : top_faces) {
       const auto& q = m.boundary_faces[f].vertices;
       for(int i = 0; i < 4; ++i) { pairs.push_back({q[i], q[(i + 1) % 4]}); pairs.push_back({q[(i + 1) % 4], q[i]}); }
     }
-    snbrs.assign(nv, pairs, true);
-    std::vector<std::pair<Index, std::size_t>> fpairs;
+    snbrs = lists_from_pairs(nv, pairs, true);
+    pairs.clear();
     for(std::size_t i = 0; i < top_faces.size(); ++i)
-      for(Index v : m.boundary_faces[top_faces[i]].vertices) fpairs.push_back({v, i});
-    vertex_top_faces.assign(nv, fpairs, false);
+      for(Index v : m.boundary_faces[top_faces[i]].vertices) pairs.push_back({v, Index(i)});
+    vertex_top_faces = lists_from_pairs(nv, pairs, false);
   }
 
   void update_hanging()
@@ -1737,8 +1717,8 @@ private:
 
   Vec3 smoothing_target(Index v) const
   {
-    const auto L = kind[v] == CURVE ? Compressed_lists<Index>::row_of(cnbrs[v])
-                 : (kind[v] == SURFACE || kind[v] == CAP || kind[v] == RELEASED) ? snbrs[v] : nbrs[v];
+    const Polygon_list::Polygon L = kind[v] == CURVE ? Polygon_list::Polygon{cnbrs[v].data(), cnbrs[v].data() + cnbrs[v].size()}
+                                  : (kind[v] == SURFACE || kind[v] == CAP || kind[v] == RELEASED) ? snbrs[v] : nbrs[v];
     if(L.empty()) return P[v];
     Vec3 s{{0, 0, 0}};
     for(Index w : L) s = add(s, P[w]);
@@ -2782,13 +2762,13 @@ private:
   std::vector<Index> twin, inner, inner_of;
   std::vector<std::size_t> top_faces;
   std::vector<Index> buffer_owner;   // the staircase cell under each buffer cell
-  Compressed_lists<std::size_t> vertex_top_faces;   // top faces (indices into top_faces) at each twin
+  Polygon_list vertex_top_faces;   // top faces (indices into top_faces) at each twin
   std::vector<Kind> kind;
   std::vector<std::uint8_t> planes;
   std::vector<Index> hang_of;
   std::vector<std::vector<std::pair<Index, double>>> hang_masters;
   std::vector<Index> cstart, cinc;
-  Compressed_lists<Index> deps, nbrs, snbrs;
+  Polygon_list deps, nbrs, snbrs;   // per vertex: its dependent hanging nodes, neighbours, surface neighbours
   std::vector<std::vector<Index>> cnbrs;
   std::vector<double> hloc;
   std::vector<std::vector<Segment_3>> curve_segments;

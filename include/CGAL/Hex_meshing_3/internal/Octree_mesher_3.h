@@ -748,7 +748,7 @@ public:
       leaf[o] = find(m_D, key[0] - 1 + (o & 1), key[1] - 1 + ((o >> 1) & 1), key[2] - 1 + ((o >> 2) & 1));
   }
 
-  // whether the kept octants around `p` and the others are each face-connected
+  // whether a set of octants (bit o: octant o) is face-connected
   static bool octants_connected(unsigned set)
   {
     if(set == 0) return true;
@@ -763,13 +763,16 @@ public:
     }
     return reached == set;
   }
+  // whether the kept octants `set` and the others are each face-connected
+  static bool well_composed(unsigned set) { return octants_connected(set) && octants_connected(~set & 0xffu); }
+  // ... around the grid point `p`
   bool well_composed(const Point_3& p) const
   {
     std::array<std::uint32_t, 8> leaf;
     octant_leaves(p, leaf);
     unsigned set = 0;
     for(int o = 0; o < 8; ++o) if(leaf[o] != NONE && (m_nodes[leaf[o]].flags & KEPT)) set |= 1u << o;
-    return octants_connected(set) && octants_connected(~set & 0xffu);
+    return well_composed(set);
   }
 
   // The kept cells around a grid vertex where the staircase is not manifold: the 8 octants
@@ -796,25 +799,24 @@ public:
           if(leaf[o] == cand[i] && !((removed >> i) & 1)) set |= 1u << o;
       return set;
     };
-    auto connected = [](unsigned set) { return octants_connected(set); };
-    const bool composed_now = connected(octants(0)) && connected(~octants(0) & 0xffu);
-    if(composed_now && octant_case) return 0;   // repaired by an earlier removal of this round
-    std::vector<double> dist(cand.size());
-    for(std::size_t i = 0; i < cand.size(); ++i)
-      dist[i] = CGAL::to_double(m_domain.squared_distance(make_cell(m_nodes[cand[i]]).center()));
     const unsigned all = (1u << cand.size()) - 1;
-    unsigned best = all;
-    int best_count = int(cand.size()) + 1;
-    double best_dist = 0;
-    for(unsigned r = 1; r <= all; ++r) {
-      const unsigned k = octants(r);
-      if(!connected(k) || !connected(~k & 0xffu)) continue;
-      int count = 0;
-      double d = 0;
-      for(std::size_t i = 0; i < cand.size(); ++i) if((r >> i) & 1) { ++count; d += std::sqrt(dist[i]); }
-      if(count < best_count || (count == best_count && d < best_dist)) { best = r; best_count = count; best_dist = d; }
+    unsigned best = all;   // well-composed now: repaired earlier this round, or the former rule
+    if(well_composed(octants(0))) {
+      if(octant_case) return 0;
+    } else {
+      std::vector<double> dist(cand.size());
+      for(std::size_t i = 0; i < cand.size(); ++i)
+        dist[i] = std::sqrt(CGAL::to_double(m_domain.squared_distance(make_cell(m_nodes[cand[i]]).center())));
+      int best_count = int(cand.size()) + 1;
+      double best_dist = 0;
+      for(unsigned r = 1; r <= all; ++r) {
+        if(!well_composed(octants(r))) continue;
+        int count = 0;
+        double d = 0;
+        for(std::size_t i = 0; i < cand.size(); ++i) if((r >> i) & 1) { ++count; d += dist[i]; }
+        if(count < best_count || (count == best_count && d < best_dist)) { best = r; best_count = count; best_dist = d; }
+      }
     }
-    if(composed_now) best = all;   // not an octant case: the former rule
     std::size_t removed = 0;
     for(std::size_t i = 0; i < cand.size(); ++i)
       if((best >> i) & 1) { m_nodes[cand[i]].flags &= std::uint8_t(~KEPT); ++removed; }
