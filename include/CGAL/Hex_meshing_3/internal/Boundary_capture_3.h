@@ -280,6 +280,41 @@ inline Polygon_list lists_from_pairs(std::size_t n, std::vector<std::pair<std::u
   return L;
 }
 
+// Lists of which few are not empty, one per item (vertex, cell): 4 bytes an item and the lists
+// that have elements, where a vector per item would take 24 bytes each (10 MB on motorBike,
+// at the capture's memory peak)
+template <typename T>
+class Sparse_lists
+{
+  static constexpr std::uint32_t none = std::uint32_t(-1);
+
+public:
+  void assign(std::size_t n) { slot.assign(n, none); lists.clear(); }
+  std::size_t size() const { return slot.size(); }
+  const std::vector<T>& operator[](std::size_t i) const
+  {
+    static const std::vector<T> empty;
+    return slot[i] == none ? empty : lists[slot[i]];
+  }
+  // the list of `i`, to be changed (made if it had none)
+  std::vector<T>& at(std::size_t i)
+  {
+    if(slot[i] == none) { slot[i] = std::uint32_t(lists.size()); lists.emplace_back(); }
+    return lists[slot[i]];
+  }
+  // a new item, with list `l`
+  void push_back(std::vector<T> l)
+  {
+    slot.push_back(none);
+    if(!l.empty()) { slot.back() = std::uint32_t(lists.size()); lists.push_back(std::move(l)); }
+  }
+  void swap(Sparse_lists& o) { slot.swap(o.slot); lists.swap(o.lists); }
+
+private:
+  std::vector<std::uint32_t> slot;
+  std::vector<std::vector<T>> lists;
+};
+
 template <typename HexMesh, typename Domain>
 std::vector<std::uint32_t> staircase_cells_to_remove(const HexMesh& m, const Domain& domain, double gap,
                                                      std::size_t* too_close = nullptr,
@@ -444,6 +479,9 @@ public:
     lap("polish");
     assign_patches();
     release_work_data();
+    // no surface query follows: the domain's search tree (a fifth of the cleanup's memory peak on
+    // motorBike) is rebuilt by the next query made of the domain
+    d.release_search_tree();
     remove_invalid_buffer_cells({});
     m.points.resize(P.size());
     for(std::size_t v = 0; v < P.size(); ++v) m.points[v] = Point_3(P[v][0], P[v][1], P[v][2]);
@@ -501,7 +539,17 @@ private:
         for(int i = 0; i < 4; ++i) { surf[f.vertices[i]] = 1; surface_edges.insert(capture_edge_key(f.vertices[i], f.vertices[(i + 1) % 4])); }
     // midpoints hanging on an edge of a surface face are surface vertices too (they are corners of
     // the finer faces next to it)
+    // (reserved: growing these by doubling kept a third of them unused, at the capture's peak)
+    std::size_t nsurf = 0, nbuf = 0;
+    for(Index v = 0; v < nv0; ++v) nsurf += std::size_t(surf[v]);
+    for(const auto& f : m.boundary_faces) nbuf += std::size_t(f.patch >= 6);
+    P.reserve(nv0 + nsurf);
+    m.hexahedra.reserve(m.hexahedra.size() + nbuf);
+    m.cell_levels.reserve(m.cell_levels.size() + nbuf);
+    buffer_owner.reserve(buffer_owner.size() + nbuf);
+    top_faces.reserve(top_faces.size() + nbuf);
     inner.clear();
+    inner.reserve(nsurf);
     for(Index v = 0; v < nv0; ++v)
       if(surf[v]) { twin[v] = Index(P.size()); inner.push_back(v); P.push_back(P[v]); }
     inner_of.assign(P.size(), NONE);
@@ -707,7 +755,7 @@ private:
       for(int i = 0; i < 4; ++i) normal[q[i]] = add(normal[q[i]], n);
     }
     // unit normals of the staircase faces at each surface vertex (at most a few distinct ones)
-    fnormals.assign(P.size(), {});
+    fnormals.assign(P.size());
     for(std::size_t f : top_faces) {
       const auto& q = m.boundary_faces[f].vertices;
       Vec3 n = cross(sub(P[inner_of[q[2]]], P[inner_of[q[0]]]), sub(P[inner_of[q[3]]], P[inner_of[q[1]]]));
@@ -715,7 +763,7 @@ private:
       if(!(l > 0)) continue;
       n = mul(n, 1.0 / l);
       for(int i = 0; i < 4; ++i) {
-        auto& L = fnormals[q[i]];
+        auto& L = fnormals.at(q[i]);
         if(std::none_of(L.begin(), L.end(), [&](const Vec3& x) { return dot(x, n) > 0.999; })) L.push_back(n);
       }
     }
@@ -791,7 +839,7 @@ private:
     }
     curve_trees.clear();
     curve_of.assign(P.size(), -1);
-    cnbrs.assign(P.size(), {});
+    cnbrs.assign(P.size());
     curve_segments.assign(curves.size(), {});
     for(std::size_t c = 0; c < curves.size(); ++c) {
       const auto& cv = curves[c];
@@ -997,8 +1045,8 @@ private:
         }
         for(std::size_t i = 0; i + 1 < pc.size(); ++i) {
           feature_edges.insert(capture_edge_key(pc[i], pc[i + 1]));
-          cnbrs[pc[i]].push_back(pc[i + 1]);
-          cnbrs[pc[i + 1]].push_back(pc[i]);
+          cnbrs.at(pc[i]).push_back(pc[i + 1]);
+          cnbrs.at(pc[i + 1]).push_back(pc[i]);
         }
       }
     }
@@ -1326,10 +1374,11 @@ private:
             --rep.surface_vertices;
             ++rep.curve_vertices;
             on_other.insert(tw);
-            for(Index& x : cnbrs[e]) if(x == t) x = tw;
-            cnbrs[t].erase(std::remove(cnbrs[t].begin(), cnbrs[t].end(), e), cnbrs[t].end());
-            cnbrs[t].push_back(tw);
-            cnbrs[tw] = {t, e};
+            for(Index& x : cnbrs.at(e)) if(x == t) x = tw;
+            auto& ct = cnbrs.at(t);
+            ct.erase(std::remove(ct.begin(), ct.end(), e), ct.end());
+            ct.push_back(tw);
+            cnbrs.at(tw) = {t, e};
             feature_edges.erase(capture_edge_key(t, e));
             feature_edges.insert(capture_edge_key(t, tw));
             feature_edges.insert(capture_edge_key(tw, e));
@@ -1349,9 +1398,9 @@ private:
       curve_of[q] = curve;
       P[q] = clamp_planes(q, closest_on_curve(mul(add(P[c], P[e]), 0.5), curve));
       ++rep.curve_vertices;
-      for(Index& x : cnbrs[c]) if(x == e) x = q;
-      for(Index& x : cnbrs[e]) if(x == c) x = q;
-      cnbrs[q] = {c, e};
+      for(Index& x : cnbrs.at(c)) if(x == e) x = q;
+      for(Index& x : cnbrs.at(e)) if(x == c) x = q;
+      cnbrs.at(q) = {c, e};
       feature_edges.erase(capture_edge_key(c, e));
       feature_edges.insert(capture_edge_key(c, q));
       feature_edges.insert(capture_edge_key(q, e));
@@ -1567,36 +1616,49 @@ private:
     // each component votes with the regions of its faces' centres' closest triangles; a component
     // that one region dominates (a feature chain was missed, or a face's centre is closest to
     // the other side of a sharp edge) takes it, otherwise each face keeps its own
+    // (votes are counted on sorted (voter, region) pairs: a hash map per vertex took 80 bytes and
+    // more a vertex, the peak of the capture on large meshes)
+    std::vector<std::pair<Index, int>> votes;
+    // the region most votes name, the smallest on a tie, for each voter of `votes` (sorted);
+    // `total`: the voter's number of votes
+    auto tally = [&](auto&& take) {
+      std::sort(votes.begin(), votes.end());
+      for(std::size_t i = 0; i < votes.size();) {
+        int best = -1, bc = -1, total = 0;
+        std::size_t j = i;
+        while(j < votes.size() && votes[j].first == votes[i].first) {
+          std::size_t k = j;
+          while(k < votes.size() && votes[k] == votes[j]) ++k;
+          const int n = int(k - j);
+          total += n;
+          if(n > bc) { bc = n; best = votes[j].second; }   // ascending regions: the smallest wins a tie
+          j = k;
+        }
+        take(votes[i].first, best, bc, total);
+        i = j;
+      }
+    };
     std::vector<int> own(nf);
-    std::unordered_map<Index, std::unordered_map<int, int>> votes;
+    votes.reserve(4 * nf);
     for(Index i = 0; i < nf; ++i) {
       const auto& q = m.boundary_faces[top_faces[i]].vertices;
       Vec3 c{{0, 0, 0}};
       for(int k = 0; k < 4; ++k) c = add(c, mul(P[q[k]], 0.25));
       own[i] = tri_region[d.closest_triangle(Point_3(c[0], c[1], c[2]))];
-      ++votes[ffind(i)][own[i]];
+      votes.push_back({ffind(i), own[i]});
     }
     std::unordered_map<Index, int> comp_region;
-    for(const auto& cv : votes) {
-      int best = -1, bc = -1, total = 0;
-      for(const auto& x : cv.second) {
-        total += x.second;
-        if(x.second > bc || (x.second == bc && x.first < best)) { bc = x.second; best = x.first; }
-      }
-      comp_region[cv.first] = 5 * bc >= 4 * total ? best : -1;
-    }
+    tally([&](Index comp, int best, int bc, int total) { comp_region[comp] = 5 * bc >= 4 * total ? best : -1; });
     face_region.assign(nf, -1);
-    std::vector<std::unordered_map<int, int>> vvotes(P.size());
+    votes.clear();
     for(Index i = 0; i < nf; ++i) {
       const int r = comp_region[ffind(i)];
       face_region[i] = r >= 0 ? r : own[i];
-      for(Index v : m.boundary_faces[top_faces[i]].vertices) ++vvotes[v][face_region[i]];
+      for(Index v : m.boundary_faces[top_faces[i]].vertices) votes.push_back({v, face_region[i]});
     }
-    for(Index v = 0; v < P.size(); ++v) {
-      int best = -1, bc = -1;
-      for(const auto& x : vvotes[v]) if(x.second > bc || (x.second == bc && x.first < best)) { bc = x.second; best = x.first; }
-      vregion[v] = best;
-    }
+    tally([&](Index v, int best, int, int) { vregion[v] = best; });
+    std::vector<std::pair<Index, int>>().swap(votes);
+    std::vector<int>().swap(own);
     // a pillow's copy of a chain vertex lies on its sector's region: the one most of the sector's
     // faces have (the pillow's own faces, along the curve, are left out: their centres are
     // often closer to the other side)
@@ -2482,7 +2544,7 @@ private:
   // moved by `improve()`, the warp counted in their quality, under the face-split repair's guards.
   void repair_split_face_warp()
   {
-    split_faces.assign(m.hexahedra.size(), {});
+    split_faces.assign(m.hexahedra.size());
     bool any = false;
     for(const auto& hn : m.hanging_nodes) {
       if(hn.number_of_masters != 4) continue;
@@ -2495,7 +2557,7 @@ private:
           std::array<Index, 4> f;
           for(int j = 0; j < 4; ++j) f[std::size_t(j)] = m.hexahedra[c][std::size_t(hex_local_faces()[std::size_t(fi)][std::size_t(j)])];
           std::sort(f.begin(), f.end());
-          if(f == k) { split_faces[c].push_back(std::uint8_t(fi)); any = true; }
+          if(f == k) { split_faces.at(c).push_back(std::uint8_t(fi)); any = true; }
         }
       }
     }
@@ -2758,7 +2820,7 @@ private:
         for(Index w : m.boundary_faces[top_faces[f]].vertices) t = (std::max)(t, moved_at[w]);
     return t;
   }
-  std::vector<std::vector<Vec3>> fnormals;   // unit staircase face normals at each twin
+  Sparse_lists<Vec3> fnormals;   // unit staircase face normals at each twin
   std::vector<Index> twin, inner, inner_of;
   std::vector<std::size_t> top_faces;
   std::vector<Index> buffer_owner;   // the staircase cell under each buffer cell
@@ -2769,7 +2831,7 @@ private:
   std::vector<std::vector<std::pair<Index, double>>> hang_masters;
   std::vector<Index> cstart, cinc;
   Polygon_list deps, nbrs, snbrs;   // per vertex: its dependent hanging nodes, neighbours, surface neighbours
-  std::vector<std::vector<Index>> cnbrs;
+  Sparse_lists<Index> cnbrs;   // per curve vertex: its neighbours on its chain
   std::vector<double> hloc;
   std::vector<std::vector<Segment_3>> curve_segments;
   std::vector<std::unique_ptr<Segment_tree>> curve_trees;
@@ -2787,7 +2849,7 @@ private:
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
   bool use_non_orthogonality = false;   // cell_quality() is the worst face's non-orthogonality (that repair)
-  std::vector<std::vector<std::uint8_t>> split_faces;   // per cell: its local faces split in four by a face node
+  Sparse_lists<std::uint8_t> split_faces;   // per cell: its local faces split in four by a face node
   double sj_floor = 0.2;          // in the repair: nor below min(its scaled Jacobian, this)
   std::vector<double> base_old;   // improve(), in the repair: the scaled Jacobians before the move
   std::vector<std::array<Index, 6>> face_neighbour;   // in the repair: the cell across each whole face

@@ -222,7 +222,7 @@ public:
     // distribute the triangles to the root cells they meet (exact test)
     const double h[3] = {(m_hi[0]-m_lo[0]) / m_n[0], (m_hi[1]-m_lo[1]) / m_n[1], (m_hi[2]-m_lo[2]) / m_n[2]};
     for(std::size_t t = 0; t < m_domain.number_of_triangles(); ++t) {
-      const Bbox_3& tb = m_domain.triangle_bbox(t);
+      const Bbox_3 tb = m_domain.triangle_bbox(t);
       std::int64_t r0[3], r1[3];
       bool outside = false;
       for(int a = 0; a < 3; ++a) {
@@ -461,7 +461,7 @@ public:
       for(int o = 0; o < 8; ++o) cb[o] = node_bbox(m_nodes[first + o]);
       m_free_list.push_back(parent.list);
       for(std::uint32_t t : tris) {
-        const Bbox_3& tb = m_domain.triangle_bbox(t);
+        const Bbox_3 tb = m_domain.triangle_bbox(t);
         for(int o = 0; o < 8; ++o) {
           if(!CGAL::do_overlap(cb[o], tb)) continue;
           Node& c = m_nodes[first + o];
