@@ -180,6 +180,13 @@ static void add_quality_details(nlohmann::ordered_json& jq, const Mesh& mesh, co
 
 int main(int argc, char** argv)
 {
+#if defined(__GLIBC__)
+  // Arrays of 1 MiB and more are mapped apart and given back to the system when freed. By default
+  // glibc raises that threshold as such arrays are freed, and keeps the freed memory of the later
+  // ones: motorBike's peak then held 130 MiB of freed arrays next to the live ones (368 -> 309 MiB)
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  mallopt(M_TRIM_THRESHOLD, 2 << 20);
+#endif
   CLI::App app{"hexmesh - all-hexahedral meshes from triangulated surfaces (Hex_meshing_3)"};
   app.footer(
       "Inputs: .off, .obj, .stl (ASCII or binary) or .ply, each optionally gzip-compressed (.gz);\n"
