@@ -579,7 +579,7 @@ int main(int argc, char** argv)
                                                    HM::IO::default_max_hanging_bulge, &foam_concave);
       {
         HM::OpenFOAM_geometry g;
-        g.compute(x, pm);
+        g.compute_cells(x, pm);   // (the faces' geometry is not kept: a memory peak)
         const std::vector<char> ft = HM::face_tet_errors(x, pm, g);
         foam_face_tets = std::size_t(std::count(ft.begin(), ft.end(), char(1)));
       }

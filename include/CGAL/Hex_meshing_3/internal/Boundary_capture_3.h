@@ -625,6 +625,9 @@ private:
     hang_masters.assign(m.hanging_nodes.size(), {});
     for(std::size_t i = 0; i < m.hanging_nodes.size(); ++i)
       for(const auto& x : m.independent_masters(m.hanging_nodes[i].vertex)) hang_masters[i].push_back(x);
+    // the places are in `P` until the end of the capture (the mesh's copy took 11 MB at its memory
+    // peak on motorBike)
+    std::vector<Point_3>().swap(m.points);
     vertex_cells(m, nv, cstart, cinc);
     // independent vertex -> dependent hanging nodes
     std::vector<std::pair<Index, Index>> pairs;
@@ -1960,7 +1963,7 @@ private:
     epoch = 1;
     // what `improve()` and `relax()` find depends on the positions they read and on the vertex
     // kinds (constraints): a change of kinds, or a move outside the sweeps, starts a new epoch
-    auto new_epoch = [&]() { epoch = ++clock; };
+    auto new_epoch = [&]() { epoch = next_stamp(); };
     for(Index c = 0; c < m.hexahedra.size(); ++c) if(cell_quality(c) < opt.target_quality) low.push_back(c);
     auto add_vertex = [&](Index v) { add_work_vertex(v, work, in_work); };
     // improves the vertices in `work`; returns the number moved and refreshes `low`
@@ -1968,14 +1971,13 @@ private:
       std::sort(work.begin(), work.end());
       std::size_t moved = 0;
       touched.clear();
-      std::vector<std::uint64_t>& failed = failed_at[smooth_energy ? 1 : 0];
+      std::vector<Stamp>& failed = failed_at[smooth_energy ? 1 : 0];
       for(Index v : work) {
         in_work[v] = 0;
         // a vertex that found no move, none of whose inputs moved since: it finds none again
         if(failed[v] >= epoch && last_input_move(v) <= failed[v]) continue;
         if(!(smooth_energy ? relax(v, cells) : improve(v, cells))) { failed[v] = clock; continue; }
-        ++clock;
-        moved_at[v] = clock;
+        moved_at[v] = next_stamp();
         for(Index h : deps[v]) moved_at[h] = clock;
         ++moved;
         for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
@@ -2776,24 +2778,40 @@ private:
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
   // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
-  std::vector<std::uint64_t> moved_at;
-  std::array<std::vector<std::uint64_t>, 2> failed_at;
-  std::uint64_t clock = 1, epoch = 1;
+  // (32 bits: these are at the capture's memory peak; `next_stamp()` starts them again before
+  // they overflow)
+  typedef std::uint32_t Stamp;
+  std::vector<Stamp> moved_at;
+  std::array<std::vector<Stamp>, 2> failed_at;
+  Stamp clock = 1, epoch = 1;
   // optimise(): each cell's quality and when it was computed (valid in the epoch, if no corner
   // moved since)
   std::vector<double> quality_cache;
-  std::vector<std::uint64_t> quality_at;
+  std::vector<Stamp> quality_at;
   bool use_quality_cache = false;
   std::vector<Index> near_min;   // improve(): the cells near the minimum
   mutable std::vector<Point_3> hint;     // closest_on_surface_from(): the last point found per vertex
   mutable std::vector<int> hint_region;  // and in which region (-1: none yet)
+
+  // the next time stamp; before the stamps overflow (after 4 billion moves) they all start again:
+  // the cached qualities are computed again and the vertices that found no move try again
+  Stamp next_stamp()
+  {
+    if(clock == std::numeric_limits<Stamp>::max() - 1) {
+      std::fill(moved_at.begin(), moved_at.end(), Stamp(0));
+      for(auto& f : failed_at) std::fill(f.begin(), f.end(), Stamp(0));
+      std::fill(quality_at.begin(), quality_at.end(), Stamp(0));
+      clock = epoch = 1;
+    }
+    return ++clock;
+  }
 
   // the quality of cell c at the current positions (the cache in optimise())
   double current_quality(Index c)
   {
     if(!use_quality_cache) return cell_quality(c);
     if(quality_at[c] >= epoch) {
-      std::uint64_t t = 0;
+      Stamp t = 0;
       for(Index w : m.hexahedra[c]) t = (std::max)(t, moved_at[w]);
       if(t <= quality_at[c]) return quality_cache[c];
     }
@@ -2803,9 +2821,9 @@ private:
 
   // the last move of a vertex `improve()` or `relax()` reads at `v`: the corners of its cells and
   // of its hanging nodes' cells, its smoothing neighbours, and the top faces around its twin
-  std::uint64_t last_input_move(Index v) const
+  Stamp last_input_move(Index v) const
   {
-    std::uint64_t t = moved_at[v];
+    Stamp t = moved_at[v];
     auto cells_of = [&](Index u) {
       for(Index k = cstart[u]; k < cstart[u + 1]; ++k)
         for(Index w : m.hexahedra[cinc[k]]) t = (std::max)(t, moved_at[w]);
