@@ -1311,6 +1311,12 @@ void test_polyhedral_half_splits()
         if(m.points[v] == Point_3(2.3, 0, 0)) folded[v][0] = 3.5;
       g.compute(folded, pm);
       const auto ft2 = HM::face_tet_errors(folded, pm, g);
+      // the cells-only geometry: the same centres and volumes (bit for bit), the same flags
+      HM::OpenFOAM_geometry gc;
+      gc.compute_cells(folded, pm);
+      assert(gc.face_centres.empty() && gc.face_areas.empty());
+      assert(gc.cell_centres == g.cell_centres && gc.cell_volumes == g.cell_volumes);
+      assert(HM::face_tet_errors(folded, pm, gc) == ft2);
       std::size_t n_bad = 0;
       for(std::size_t f = 0; f < ft2.size(); ++f) {
         if(!ft2[f]) continue;
