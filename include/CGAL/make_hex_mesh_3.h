@@ -77,7 +77,10 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)
  * \tparam HexMesh    model of `HexMesh_3` (e.g. `Hex_meshing_3::Hex_mesh_3<K>`)
- * \param domain   the surface and its inside test (input)
+ * \param domain   the surface and its inside test (input; its search tree, which the surface
+ *                 queries build when first needed, is freed at the end of the body-fitted capture to
+ *                 lower the memory peak, and built again by the next query: one domain must not be
+ *                 meshed or queried from several threads at once)
  * \param criteria says which cells to split (input)
  * \param out      receives the mesh; cleared first (output)
  * \param np optional sequence of named parameters among the ones listed below
