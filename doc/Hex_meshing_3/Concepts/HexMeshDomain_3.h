@@ -43,8 +43,8 @@ public:
   /// the number of triangles; triangles are indexed from 0 to `number_of_triangles() - 1`
   std::size_t number_of_triangles() const;
 
-  /// the bounding box of triangle `i`
-  const CGAL::Bbox_3& triangle_bbox(std::size_t i) const;
+  /// the bounding box of triangle `i` (by value: a model may compute it)
+  CGAL::Bbox_3 triangle_bbox(std::size_t i) const;
 
   /// the names of the parts of the surface; boundary faces on the surface get the patch
   /// `6 + patch(i)` of the mesh, after the six faces of the meshing box
@@ -96,6 +96,11 @@ public:
 
   /// the point of the surface closest to `p`
   Point_3 closest_point(const Point_3& p) const;
+
+  /// frees whatever the surface queries built to answer fast (a search tree); the next query
+  /// builds it again. The boundary capture calls it when it has made its last query, to lower
+  /// the memory peak. (A model that keeps nothing does nothing.)
+  void release_search_tree() const;
 
   /// the squared distance from `p` to the surface
   Geom_traits::FT squared_distance(const Point_3& p) const;
