@@ -33,14 +33,6 @@ public:
 
   Fast_winding_number_3() {}
 
-  /// `tris` is a flat array of 9 doubles per triangle (a, b, c)
-  void build(const std::vector<double>& tris, double beta = 2.0)
-  {
-    std::vector<std::uint32_t> corners(tris.size() / 3);
-    std::iota(corners.begin(), corners.end(), std::uint32_t(0));
-    build(tris, std::move(corners), beta);
-  }
-
   /// `points`: 3 doubles per point; `triangles`: 3 indices into the points per triangle (the
   /// points shared by triangles are stored once: 9 doubles per triangle took 14 MB on motorBike)
   void build(std::vector<double> points, std::vector<std::uint32_t> triangles, double beta = 2.0)
