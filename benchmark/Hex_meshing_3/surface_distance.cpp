@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Author(s)     : Hex_meshing_3 developers
 //
-// surface_distance A B [--exclude REGEX]... [--samples N]
+// surface_distance A B [--exclude REGEX]... [--samples N] [--dump PREFIX]
 //
 // Two-sided distance between two triangulated surfaces (any format hexmesh reads: OFF, OBJ, STL,
 // PLY, optionally gzipped), the same measure for every mesher of the benchmarks: points sampled
@@ -10,7 +10,8 @@
 // against the other surface with CGAL's AABB tree. Parts (OBJ groups, STL solids) whose name
 // matches one of the --exclude regular expressions are left out on both sides (a mesh's box
 // patches). Prints one JSON object: per direction the largest, mean, 95th and 99th percentile
-// distances, and each surface's triangles and area.
+// distances, and each surface's triangles and area. --dump PREFIX also writes every sample as a
+// line "x y z distance" to PREFIX_a_to_b.txt and PREFIX_b_to_a.txt (where the distance comes from).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -22,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <stdexcept>
 #include <random>
 #include <regex>
 #include <string>
@@ -67,7 +69,7 @@ static Surface load(const std::string& file, const std::vector<std::regex>& excl
 }
 
 // the distances of `n` area-uniform samples of `a` (and of its vertices) to `b`
-static std::vector<double> distances(const Surface& a, const Tree& b, std::size_t n)
+static std::vector<double> distances(const Surface& a, const Tree& b, std::size_t n, std::FILE* dump = nullptr)
 {
   std::vector<double> cum;
   cum.reserve(a.triangles.size());
@@ -84,8 +86,12 @@ static std::vector<double> distances(const Surface& a, const Tree& b, std::size_
     if(r1 + r2 > 1) { r1 = 1 - r1; r2 = 1 - r2; }
     const Point_3 p = tr[0] + r1 * (tr[1] - tr[0]) + r2 * (tr[2] - tr[0]);
     d.push_back(std::sqrt(b.squared_distance(p)));
+    if(dump) std::fprintf(dump, "%.9g %.9g %.9g %.9g\n", p.x(), p.y(), p.z(), d.back());
   }
-  for(const Point_3& p : a.vertices) d.push_back(std::sqrt(b.squared_distance(p)));
+  for(const Point_3& p : a.vertices) {
+    d.push_back(std::sqrt(b.squared_distance(p)));
+    if(dump) std::fprintf(dump, "%.9g %.9g %.9g %.9g\n", p.x(), p.y(), p.z(), d.back());
+  }
   return d;
 }
 
@@ -105,14 +111,16 @@ int main(int argc, char** argv)
   std::vector<std::string> files;
   std::vector<std::regex> exclude;
   std::size_t samples = 200000;
+  std::string dump;
   for(int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if(a == "--exclude" && i + 1 < argc) exclude.emplace_back(argv[++i]);
     else if(a == "--samples" && i + 1 < argc) samples = std::size_t(std::strtoull(argv[++i], nullptr, 10));
+    else if(a == "--dump" && i + 1 < argc) dump = argv[++i];
     else files.push_back(a);
   }
   if(files.size() != 2) {
-    std::fprintf(stderr, "usage: surface_distance A B [--exclude REGEX]... [--samples N]\n");
+    std::fprintf(stderr, "usage: surface_distance A B [--exclude REGEX]... [--samples N] [--dump PREFIX]\n");
     return 1;
   }
   try {
@@ -126,9 +134,19 @@ int main(int argc, char** argv)
     tb.accelerate_distance_queries();
     std::printf("{\"a\": \"%s\", \"b\": \"%s\", \"a_triangles\": %zu, \"b_triangles\": %zu, \"a_area\": %.9g, \"b_area\": %.9g, ",
                 files[0].c_str(), files[1].c_str(), a.triangles.size(), b.triangles.size(), a.area, b.area);
-    print_stats("a_to_b", distances(a, tb, samples));
+    auto open_dump = [&](const char* which) -> std::FILE* {
+      if(dump.empty()) return nullptr;
+      std::FILE* f = std::fopen((dump + which).c_str(), "w");
+      if(!f) throw std::runtime_error("cannot write " + dump + which);
+      return f;
+    };
+    std::FILE* da = open_dump("_a_to_b.txt");
+    print_stats("a_to_b", distances(a, tb, samples, da));
+    if(da) std::fclose(da);
     std::printf(", ");
-    print_stats("b_to_a", distances(b, ta, samples));
+    std::FILE* db = open_dump("_b_to_a.txt");
+    print_stats("b_to_a", distances(b, ta, samples, db));
+    if(db) std::fclose(db);
     std::printf("}\n");
   } catch(const std::exception& e) {
     std::fprintf(stderr, "surface_distance: %s\n", e.what());

@@ -60,7 +60,12 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  * - a buffer layer of hexahedra joins each staircase face on the surface to its image on the
  *   surface (closest point, or the point along the staircase normal where the closest point lies
  *   behind a staircase face; kept in the box planes it touches); a hanging midpoint of a staircase
- *   face's edge has a hanging image, so coarse and fine buffer cells meet 1:2;
+ *   face's edge has a hanging image, so coarse and fine buffer cells meet 1:2; an image whose
+ *   surface point lies on a border edge of the input (a hole) caps the hole instead: it stays
+ *   half a cell out from the staircase and is not projected - unless that border edge runs along
+ *   another border edge within a thousandth of the input's diagonal (and a quarter of its
+ *   length): a seam between parts that have their own copies of the vertices, or a crack, which
+ *   borders no hole (`Boundary_fidelity::cap_faces` follows the same rule);
  * - feature curves (named parameter `feature_curves`) are followed by chains of mesh edges
  *   (shortest paths on the buffer's outer surface) snapped onto them, corners onto corners; the
  *   outer faces between chains are projected onto the input faces between the same curves;

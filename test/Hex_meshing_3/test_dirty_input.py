@@ -153,7 +153,8 @@ NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_no
 MIN_SJ_03 = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight", "fin_slot", "rotor",
              "t20_part"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
-MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.245, "teapot": 0.17, "elephant": 0.05, "fandisk_crack": 0.025}
+# (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
+MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.245, "teapot": 0.17, "elephant": 0.05, "fandisk_crack": 0.19}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
@@ -787,6 +788,9 @@ def main():
                   f"{stem}: the holes are capped: {fi['cap_faces']} cap faces, area {fi['cap_area']:.4g}")
         if not open_input:
             check(fi["cap_faces"] == 0, f"{stem}: closed input, no cap face ({fi['cap_faces']})")
+        if stem == "fandisk_crack":   # its border edges run along each other: a crack, not a hole
+            check(fi["cap_faces"] == 0 and j["boundary"]["cap_vertices"] == 0,
+                  f"{stem}: the crack is not capped ({fi['cap_faces']} cap faces, {j['boundary']['cap_vertices']} cap vertices)")
         check(fi["mesh_to_input_mean"] <= 0.2 * s_,
               f"{stem}: mean distance of boundary faces to the input {fi['mesh_to_input_mean'] / s_:.3f} x surface size <= 0.2 "
               f"(max {fi['mesh_to_input_max'] / s_:.2f}, input->mesh max {fi['input_to_mesh_max'] / s_:.2f}; "

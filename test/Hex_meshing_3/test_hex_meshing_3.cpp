@@ -12,6 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/Octree_mesher_3.h>
+#include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 #include <CGAL/make_hex_mesh_3.h>
 
 #include <CGAL/IO/polygon_soup_io.h>
@@ -1483,6 +1484,42 @@ void test_thin_part_refinement()
 // along which no constrained value falls at first order. Against an independent computation: the
 // optimum is the projection of -g onto the orthogonal complement of some subset of the rows (a
 // face of the cone), the closest such projection that satisfies every row.
+// border edges along another border edge are a seam (sealed); the borders of a hole are not
+void test_sealed_border_edges()
+{
+  namespace HI = CGAL::Hex_meshing_3::internal;
+  std::cout << "sealed border edges\n";
+  typedef K::Segment_3 S;
+  const Point_3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0), e(2, 0, 0), f(2, 1, 0);
+  // two unit squares side by side, each with its own copy of the line x = 1 (indices 4, 5 and 6,
+  // 7: the same points); the right one's copy split in two (a T-junction), and a slot of
+  // 0.01 between x = 1 and the edge (1.01, 0)-(1.01, 1) of index 8-9
+  std::vector<S> segs{S(a, b), S(b, c), S(c, d), S(d, a),                          // 0-3: left square (0 1 2 3)
+                      S(b, Point_3(1, 0.4, 0)), S(Point_3(1, 0.4, 0), c),          // 4, 5: right copy of x = 1
+                      S(e, f),                                                      // 6: far edge
+                      S(Point_3(1.5, 0.2, 0), Point_3(1.5, 0.8, 0))};              // 7: alone
+  std::vector<std::array<std::uint32_t, 2>> ends{{{0, 1}}, {{1, 2}}, {{2, 3}}, {{3, 0}},
+                                                 {{4, 10}}, {{10, 5}}, {{6, 7}}, {{8, 9}}};
+  const std::vector<char> sealed = HI::sealed_border_edges<K>(segs, ends, 0.01);
+  // the left square's x = 1 edge lies on the right copy and the copy on it; nothing else is sealed
+  // (edges 0 and 2 touch the copy only at their ends, which share no index but lie beyond
+  // a quarter of their length from their midpoints)
+  const std::vector<char> expected{0, 1, 0, 0, 1, 1, 0, 0};
+  for(std::size_t i = 0; i < segs.size(); ++i) {
+    if(sealed[i] != expected[i]) std::cerr << "edge " << i << " sealed " << int(sealed[i]) << '\n';
+    assert(sealed[i] == expected[i]);
+  }
+  // a crack 0.005 wide is sealed at tolerance 0.01, not at 0.001
+  std::vector<S> crack{S(a, b), S(Point_3(0, 0.005, 0), Point_3(1, 0.005, 0))};
+  std::vector<std::array<std::uint32_t, 2>> crack_ends{{{0, 1}}, {{2, 3}}};
+  assert((HI::sealed_border_edges<K>(crack, crack_ends, 0.01) == std::vector<char>{1, 1}));
+  assert((HI::sealed_border_edges<K>(crack, crack_ends, 0.001) == std::vector<char>{0, 0}));
+  // edges sharing an index never seal each other (a hole's border folding back on itself)
+  std::vector<S> fold{S(a, b), S(b, Point_3(0, 0.001, 0))};
+  std::vector<std::array<std::uint32_t, 2>> fold_ends{{{0, 1}}, {{1, 2}}};
+  assert((HI::sealed_border_edges<K>(fold, fold_ends, 0.01) == std::vector<char>{0, 0}));
+}
+
 void test_project_direction()
 {
   namespace HI = CGAL::Hex_meshing_3::internal;
@@ -1732,6 +1769,7 @@ int main(int argc, char** argv)
   test_features();
   test_feature_fidelity();
   test_polyhedral_half_splits();
+  test_sealed_border_edges();
   test_project_direction();
   test_body_fitted();
   test_body_fitted_user_line();

@@ -16,6 +16,7 @@
 // against the mesh's boundary vertices.
 
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
+#include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 
 #include <CGAL/AABB_segment_primitive.h>
 #include <CGAL/AABB_traits.h>
@@ -52,7 +53,7 @@ struct Boundary_fidelity
   double mean_sample_distance = 0;
   std::array<double, 3> worst_face_location = {{0, 0, 0}};     ///< where the mesh is farthest
   std::array<double, 3> worst_sample_location = {{0, 0, 0}};   ///< where the input is farthest
-  std::size_t cap_faces = 0;         ///< faces capping holes of the input (not counted in the face distances)
+  std::size_t cap_faces = 0;         ///< faces capping holes of the input (not counted in the face distances): whose centre's nearest input point lies on a border edge, not counting the border edges that run along another one (a seam or crack, `make_hex_mesh_3()`)
   double cap_area = 0;               ///< their area
   /// mesh -> input, per surface face (caps left out, in the order of `mesh.boundary_faces`): the
   /// largest distance of its corners and centre, and the point where it is reached
@@ -76,8 +77,10 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   typedef typename GT::Segment_3 Segment_3;
   Boundary_fidelity r;
   // the border edges of the input (one triangle): a face whose centre is nearest to one of them
-  // caps a hole, and is counted apart
+  // caps a hole, and is counted apart; border edges along another border edge (a seam between
+  // parts, a crack: `internal::sealed_border_edges()`, as the capture judges them) border no hole
   std::vector<Segment_3> border;
+  std::vector<std::array<std::uint32_t, 2>> border_ends;
   {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for(const auto& t : domain.triangle_indices())
@@ -90,9 +93,17 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     for(std::size_t i = 0; i < edges.size();) {
       std::size_t j = i;
       while(j < edges.size() && edges[j] == edges[i]) ++j;
-      if(j - i == 1) border.emplace_back(domain.points()[edges[i].first], domain.points()[edges[i].second]);
+      if(j - i == 1) {
+        border.emplace_back(domain.points()[edges[i].first], domain.points()[edges[i].second]);
+        border_ends.push_back({{edges[i].first, edges[i].second}});
+      }
       i = j;
     }
+    const std::vector<char> sealed = internal::sealed_border_edges<GT>(border, border_ends, internal::seam_tolerance(domain.bbox()));
+    std::size_t kept = 0;
+    for(std::size_t i = 0; i < border.size(); ++i)
+      if(!sealed[i]) border[kept++] = border[i];
+    border.resize(kept);
   }
   typedef typename std::vector<Segment_3>::const_iterator Seg_it;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Segment_tree;

@@ -40,6 +40,7 @@
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
+#include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 #include <CGAL/Hex_meshing_3/internal/vertex_cells.h>
 
 #include <CGAL/AABB_segment_primitive.h>
@@ -737,12 +738,24 @@ private:
   void place_twins()
   {
     // a twin whose closest point lies on an open edge of the input (a hole) caps the hole: it
-    // stays near its inner vertex, pushed out along the staircase normal, and is not projected
+    // stays near its inner vertex, pushed out along the staircase normal, and is not projected.
+    // Open edges along another open edge (a seam between parts with their own vertices, a crack:
+    // `sealed_border_edges()`) border no hole: a twin nearest to them is projected.
     std::unique_ptr<Segment_tree> open_tree;
     std::vector<Segment_3> open_segments;
-    if(fc)
+    if(fc) {
+      std::vector<std::array<std::uint32_t, 2>> ends;
       for(const auto& e : fc->edges())
-        if(e.kind & FeatureCurves::OPEN) open_segments.emplace_back(fc->point(e.vertices[0]), fc->point(e.vertices[1]));
+        if(e.kind & FeatureCurves::OPEN) {
+          open_segments.emplace_back(fc->point(e.vertices[0]), fc->point(e.vertices[1]));
+          ends.push_back({{std::uint32_t(e.vertices[0]), std::uint32_t(e.vertices[1])}});
+        }
+      const std::vector<char> sealed = sealed_border_edges<GT>(open_segments, ends, seam_tolerance(d.bbox()));
+      std::size_t kept = 0;
+      for(std::size_t i = 0; i < open_segments.size(); ++i)
+        if(!sealed[i]) open_segments[kept++] = open_segments[i];
+      open_segments.resize(kept);
+    }
     if(!open_segments.empty()) {
       open_tree = std::make_unique<Segment_tree>(open_segments.begin(), open_segments.end());
       open_tree->accelerate_distance_queries();
