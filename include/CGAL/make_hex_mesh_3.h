@@ -65,7 +65,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   half a cell out from the staircase and is not projected - unless that border edge runs along
  *   another border edge within a thousandth of the input's diagonal (and a quarter of its
  *   length): a seam between parts that have their own copies of the vertices, or a crack, which
- *   borders no hole (`Boundary_fidelity::cap_faces` follows the same rule);
+ *   borders no hole (`Boundary_fidelity::cap_faces` follows the same rule); the cap vertices at
+ *   the border of a two-sided sheet (a baffle, round which the buffer wraps) are moved onto it
+ *   after the optimisation, as far as no cell of theirs falls below min(its quality, 0.35);
  * - feature curves (named parameter `feature_curves`) are followed by chains of mesh edges
  *   (shortest paths on the buffer's outer surface) snapped onto them, corners onto corners; the
  *   outer faces between chains are projected onto the input faces between the same curves;

@@ -608,6 +608,11 @@ def main():
               f"plate {plate_area:.3f})")
         rc = run(["checkMesh", "-case", case, "-allTopology"], env=dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam"))
         check(rc.returncode == 0 and "Mesh OK" in rc.stdout, f"{label}: checkMesh -allTopology: Mesh OK")
+        if not extra:   # the buffer wraps round the rim: its cap vertices go onto the rim where they can
+            fi, bd = j["fidelity"], j["boundary"]
+            check(fi["cap_area"] < 0.45 and bd["cap_vertices"] < 260,
+                  f"{label}: the cap round the rim shrinks ({bd['cap_vertices']} cap vertices, cap area {fi['cap_area']:.3f}; "
+                  f"290 and 0.533 while no cap vertex moved onto the rim)")
 
     # 8a'. a body touching or crossing a box face: the hole in the box patch, the body's section,
     # the filled wedge (reported)

@@ -119,7 +119,7 @@ struct Meshing_statistics
   std::size_t surface_vertices = 0;         ///< buffer vertices placed on the surface
   std::size_t curve_vertices = 0;           ///< of which on feature curves
   std::size_t corner_vertices = 0;          ///< of which on corners
-  std::size_t cap_vertices = 0;             ///< buffer vertices over holes of the input (not projected)
+  std::size_t cap_vertices = 0;             ///< buffer vertices over holes of the input (not projected; those at a two-sided sheet's border that reached it are not counted)
   std::size_t curves_captured = 0;          ///< feature curves followed by a chain of mesh edges
   std::size_t curves_missed = 0;            ///< feature curves no chain was found for
   std::size_t curve_gaps = 0;               ///< ends of captured curves left 1.5 cells short (walled in by other curves at a corner)

@@ -806,6 +806,9 @@ private:
       if(cap) {
         kind[t] = CAP;
         ++rep.cap_vertices;
+        // the border of a two-sided sheet (a baffle) is no hole: the buffer wraps round it, and
+        // its cap vertices go onto it later as far as their cells allow (`optimise()`)
+        if(d.is_two_sided(d.closest_triangle(Point_3(c[0], c[1], c[2])))) sheet_caps.push_back(t);
         const double l = norm(normal[t]);
         P[t] = clamp_planes(t, l > 0 ? add(P[v], mul(normal[t], 0.5 * hloc[v] / l)) : P[v]);
       } else
@@ -2078,7 +2081,7 @@ private:
     }
     // the cells around released vertices were only untangled: smooth them (and whatever else is
     // still below the target) once more
-    if(!any_released && unsnapped_list.empty()) return;
+    if(!any_released && unsnapped_list.empty() && sheet_caps.empty()) return;
     smooth(opt.final_passes, false);
     // Fidelity before quality: vertices that lost their constraint go back as far as their cells
     // allow (none may fall below min(its quality, keep_quality)) - released vertices towards the
@@ -2089,6 +2092,7 @@ private:
     std::vector<std::pair<Index, std::size_t>> todo;   // vertex, its entry in unsnapped_list (or none)
     for(Index v : released_list) todo.push_back({v, std::size_t(-1)});
     for(std::size_t i = 0; i < unsnapped_list.size(); ++i) todo.push_back({unsnapped_list[i].v, i});
+    for(Index v : sheet_caps) todo.push_back({v, std::size_t(-1)});
     for(int round = 0; round < opt.reattach_rounds && !cancelled; ++round) {
       std::size_t moved = 0;
       for(const auto& td : todo) {
@@ -2097,7 +2101,7 @@ private:
         Kind goal;
         int r = -1;
         const Vec3 x0 = P[v];
-        if(kind[v] == RELEASED) {
+        if(kind[v] == RELEASED || kind[v] == CAP) {
           if(td.second != std::size_t(-1)) continue;   // its surface entry comes first
           r = region_of_point(x0);
           target = clamp_planes(v, closest_on_surface(x0, r));
@@ -2111,14 +2115,17 @@ private:
         q_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
         bool done = false;
+        // (a sheet's cap vertex is not invalid where it is: no cell may fall below 0.35 for it)
+        const double keep = kind[v] == CAP ? opt.polish_quality : opt.keep_quality;
         for(double t : {1.0, 0.5, 0.25}) {
           const Vec3 y = add(x0, mul(sub(target, x0), t));
           move(v, t == 1.0 || goal == SURFACE ? y : constrain(v, y));
           bool ok = true;
           for(std::size_t i = 0; i < cells.size() && ok; ++i)
-            ok = cell_quality(cells[i]) >= (std::min)(q_old[i], opt.keep_quality);
+            ok = cell_quality(cells[i]) >= (std::min)(q_old[i], keep);
           if(!ok) continue;
           if(t == 1.0) {
+            if(kind[v] == CAP) --rep.cap_vertices;   // on its sheet's border now
             kind[v] = goal;
             if(goal == SURFACE) vregion[v] = r; else --rep.unsnapped_vertices;
           }
@@ -2857,6 +2864,7 @@ private:
   std::vector<Index> buffer_owner;   // the staircase cell under each buffer cell
   Polygon_list vertex_top_faces;   // top faces (indices into top_faces) at each twin
   std::vector<Kind> kind;
+  std::vector<Index> sheet_caps;   // cap vertices at the border of a two-sided sheet
   std::vector<std::uint8_t> planes;
   std::vector<Index> hang_of;
   std::vector<std::vector<std::pair<Index, double>>> hang_masters;
