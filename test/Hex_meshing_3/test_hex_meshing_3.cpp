@@ -36,6 +36,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -1750,6 +1751,27 @@ void test_body_fitted_user_line()
   std::cout << "  cancelled in the capture: " << mc.number_of_cells() << " cells, min scaled Jacobian "
             << HM::Mesh_quality::range(q.scaled_jacobian).min << "\n";
   assert(q.number_of_inverted_cells() == 0);
+
+  // a visitor that throws during the capture (while the capture holds the points apart): the
+  // exception reaches the caller, and the mesh keeps a point for every vertex its cells use
+  struct Capture_thrower
+  {
+    std::string phase;
+    void on_phase_begin(const char* n, std::size_t) { phase = n; }
+    void on_phase_end(const char*) {}
+    bool go_further(double) { if(phase == "capture") throw std::runtime_error("stop"); return true; }
+  } thrower;
+  Mesh mt;
+  bool thrown = false;
+  try {
+    CGAL::make_hex_mesh_3(e, Criteria(0.25, 0.0625), mt, HP::body_fitted(true).visitor(std::ref(thrower)));
+  } catch(const std::runtime_error&) { thrown = true; }
+  assert(thrown && mt.number_of_cells() > 0);
+  std::size_t used = 0;
+  for(const auto& h : mt.hexahedra) for(auto v : h) used = (std::max)(used, std::size_t(v) + 1);
+  std::cout << "  a visitor throwing in the capture: " << mt.number_of_cells() << " cells, " << mt.points.size()
+            << " points (" << used << " used)\n";
+  assert(mt.points.size() >= used);
 }
 
 int main(int argc, char** argv)

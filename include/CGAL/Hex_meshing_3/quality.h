@@ -15,6 +15,7 @@
 // Also: histograms with fixed ranges per measure (`histogram()`, `quality_histograms()`) and the
 // worst elements with their locations (`worst_cells()`).
 
+#include <CGAL/assertions.h>
 #include <CGAL/number_utils.h>
 #include <CGAL/Hex_meshing_3/Polyhedral_mesh_3.h>
 
@@ -248,6 +249,8 @@ inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFO
 {
   using namespace internal;
   const std::size_t nc = pm.number_of_cells, nf = pm.faces.size(), ni = pm.neighbour.size();
+  CGAL_precondition(g.face_areas.size() == nf && g.face_centres.size() == nf);   // `compute()`, not `compute_cells()`
+  CGAL_precondition(nf + ni <= std::numeric_limits<std::uint32_t>::max());    // the 32-bit lists below
   std::vector<std::uint32_t> start(nc + 1, 0), faces;   // the faces of each cell (32 bits: a memory peak)
   for(std::size_t f = 0; f < nf; ++f) { ++start[pm.owner[f] + 1]; if(f < ni) ++start[pm.neighbour[f] + 1]; }
   for(std::size_t c = 0; c < nc; ++c) start[c + 1] += start[c];
@@ -406,6 +409,7 @@ std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyh
 {
   using namespace internal;
   const double rad_to_deg = 180.0 / 3.14159265358979323846;
+  CGAL_precondition(g.face_areas.size() == pm.faces.size() && g.face_centres.size() == pm.faces.size());   // `compute()`
   std::vector<double> w(pm.faces.size(), 0.0);
   for(std::size_t f = 0; f < pm.faces.size(); ++f) {
     const auto& F = pm.faces[f];
@@ -436,6 +440,7 @@ void face_non_orthogonality_and_skewness(const PointRange& points, const Polyhed
                                          std::vector<double>* non_orthogonality, std::vector<double>& skewness)
 {
   const std::size_t ni = pm.neighbour.size();
+  CGAL_precondition(g.face_areas.size() == pm.faces.size() && g.face_centres.size() == pm.faces.size());   // `compute()`
   const double ROOTVSMALL = 1.0e-150, VSMALL = 1.0e-300;
   if(non_orthogonality) non_orthogonality->resize(ni);
   skewness.resize(pm.faces.size());

@@ -456,6 +456,19 @@ public:
     };
     P.resize(m.points.size());
     for(std::size_t v = 0; v < P.size(); ++v) P[v] = vec(m.points[v]);
+    // the mesh's points are freed while `P` holds them (`build_adjacency()`): if an exception
+    // leaves the capture before they are written back, they are written back here, so that the
+    // mesh stays whole (its points as many as its cells use)
+    struct Points_back
+    {
+      Boundary_capture_3& c;
+      ~Points_back()
+      {
+        if(!c.m.points.empty() || c.P.empty()) return;   // not freed, or written back already
+        c.m.points.resize(c.P.size());
+        for(std::size_t v = 0; v < c.P.size(); ++v) c.m.points[v] = Point_3(c.P[v][0], c.P[v][1], c.P[v][2]);
+      }
+    } points_back{*this};
     insert_buffer();
     build_topology();
     lap("buffer");
