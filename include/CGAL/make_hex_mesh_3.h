@@ -67,7 +67,10 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   length): a seam between parts that have their own copies of the vertices, or a crack, which
  *   borders no hole (`Boundary_fidelity::cap_faces` follows the same rule); the cap vertices at
  *   the border of a two-sided sheet (a baffle, round which the buffer wraps) are moved onto it
- *   after the optimisation, as far as no cell of theirs falls below min(its quality, 0.35);
+ *   after the optimisation, as far as no cell of theirs falls below min(its quality, 0.35); a
+ *   surface vertex within two cells of a hole's border (a simple closed loop of open edges, not
+ *   on a two-sided sheet) is never moved onto that border (its cells towards the cap would
+ *   collapse there);
  * - feature curves (named parameter `feature_curves`) are followed by chains of mesh edges
  *   (shortest paths on the buffer's outer surface) snapped onto them, corners onto corners; the
  *   outer faces between chains are projected onto the input faces between the same curves;

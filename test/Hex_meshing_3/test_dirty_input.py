@@ -154,7 +154,9 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder",
              "t20_part"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
-MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.245, "teapot": 0.17, "elephant": 0.05, "fandisk_crack": 0.19}
+# (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
+MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.245, "teapot": 0.17, "elephant": 0.05, "fandisk_crack": 0.19,
+                "elephant-with-holes": 0.035}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",

@@ -728,6 +728,13 @@ private:
     return v < hint_region.size() && hint_region[v] == region_of_vertex(v) && hint_region[v] >= 0 &&
            clamp_planes(v, vec(hint[v])) == P[v];
   }
+  // a surface vertex near a hole, at `x` on the hole's border: its smoothing target lies over the
+  // hole, and the cells between it and the hole's cap vertices collapse there
+  bool onto_hole_rim(Index v, const Vec3& x) const
+  {
+    return hole_tree && v < near_hole.size() && near_hole[v] && kind[v] == SURFACE &&
+           CGAL::to_double(hole_tree->squared_distance(Point_3(x[0], x[1], x[2]))) <= hole_tiny * hole_tiny;
+  }
   Vec3 closest_on_curve(const Vec3& x, int curve) const
   {
     return vec(curve_trees[std::size_t(curve)]->closest_point(Point_3(x[0], x[1], x[2])));
@@ -756,8 +763,8 @@ private:
     // `sealed_border_edges()`) border no hole: a twin nearest to them is projected.
     std::unique_ptr<Segment_tree> open_tree;
     std::vector<Segment_3> open_segments;
+    std::vector<std::array<std::uint32_t, 2>> ends;
     if(fc) {
-      std::vector<std::array<std::uint32_t, 2>> ends;
       for(const auto& e : fc->edges())
         if(e.kind & FeatureCurves::OPEN) {
           open_segments.emplace_back(fc->point(e.vertices[0]), fc->point(e.vertices[1]));
@@ -766,12 +773,46 @@ private:
       const std::vector<char> sealed = sealed_border_edges<GT>(open_segments, ends, seam_tolerance(d.bbox()));
       std::size_t kept = 0;
       for(std::size_t i = 0; i < open_segments.size(); ++i)
-        if(!sealed[i]) open_segments[kept++] = open_segments[i];
+        if(!sealed[i]) { ends[kept] = ends[i]; open_segments[kept++] = open_segments[i]; }
       open_segments.resize(kept);
+      ends.resize(kept);
     }
     if(!open_segments.empty()) {
       open_tree = std::make_unique<Segment_tree>(open_segments.begin(), open_segments.end());
       open_tree->accelerate_distance_queries();
+    }
+    // the borders of holes: simple closed loops of open edges (every vertex on two of them; not
+    // a dangling fin's border, which ends at a non-manifold edge; holes touching at a vertex are
+    // left out too), not on a two-sided sheet; no surface vertex may slide onto them later
+    // (`onto_hole_rim()`)
+    {
+      std::vector<std::uint32_t> verts;
+      for(const auto& e : ends) { verts.push_back(e[0]); verts.push_back(e[1]); }
+      std::sort(verts.begin(), verts.end());
+      auto index_of = [&](std::uint32_t v) { return std::size_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()); };
+      std::vector<std::size_t> parent(verts.size());
+      std::vector<int> degree(verts.size(), 0);
+      for(std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+      auto find = [&](std::size_t x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; };
+      for(const auto& e : ends) {   // (`verts` keeps duplicates: each copy's first index is found)
+        const std::size_t a = index_of(e[0]), b = index_of(e[1]);
+        ++degree[a]; ++degree[b];
+        const std::size_t ra = find(a), rb = find(b);
+        if(ra != rb) parent[(std::max)(ra, rb)] = (std::min)(ra, rb);
+      }
+      std::vector<char> loop(verts.size(), 1);
+      for(std::size_t i = 0; i < verts.size(); ++i)
+        if(index_of(verts[i]) == i && degree[i] != 2) loop[find(i)] = 0;
+      for(std::size_t i = 0; i < open_segments.size(); ++i) {
+        const Segment_3& sg = open_segments[i];
+        if(loop[find(index_of(ends[i][0]))] && !d.is_two_sided(d.closest_triangle(CGAL::midpoint(sg.source(), sg.target()))))
+          hole_segments.push_back(sg);
+      }
+    }
+    if(!hole_segments.empty()) {
+      hole_tree = std::make_unique<Segment_tree>(hole_segments.begin(), hole_segments.end());
+      hole_tree->accelerate_distance_queries();
+      near_hole.assign(P.size(), 0);
     }
     const double tiny = 1e-9 * (box_hi[0] - box_lo[0] + box_hi[1] - box_lo[1] + box_hi[2] - box_lo[2]);
     // outward normal of the staircase at each surface vertex
@@ -824,9 +865,12 @@ private:
         if(d.is_two_sided(d.closest_triangle(Point_3(c[0], c[1], c[2])))) sheet_caps.push_back(t);
         const double l = norm(normal[t]);
         P[t] = clamp_planes(t, l > 0 ? add(P[v], mul(normal[t], 0.5 * hloc[v] / l)) : P[v]);
-      } else
+      } else {
         P[t] = c;
+        if(hole_tree && hole_tree->squared_distance(Point_3(c[0], c[1], c[2])) < 4 * hloc[v] * hloc[v]) near_hole[t] = 1;
+      }
     }
+    hole_tiny = tiny;
     update_hanging();
   }
 
@@ -1863,9 +1907,11 @@ private:
     const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
     // a move must raise the minimum, and no cell may fall below min(its quality, keep_quality):
     // the worst cell does not get better by making a good one bad
+    const bool on_rim = onto_hole_rim(v, x0);
     auto trial = [&](const Vec3& y) {
       const Vec3 x = constrain(v, y);
       if(norm(sub(x, x0)) < 1e-12 * h) return;
+      if(!on_rim && onto_hole_rim(v, x)) return;
       move(v, x);
       double f = 1, mean = 0;
       for(std::size_t i = 0; i < cells.size(); ++i) {
@@ -1960,9 +2006,11 @@ private:
     const double gn = norm(g);
     if(!(gn > 0)) return false;
     const Vec3 dir = mul(g, -1.0 / gn);
+    const bool on_rim = onto_hole_rim(v, x0);
     for(double alpha = 0.25; alpha > 1e-3; alpha *= 0.5) {
       const Vec3 x = constrain(v, add(x0, mul(dir, alpha * h)));
       if(norm(sub(x, x0)) < 1e-9 * h) continue;
+      if(!on_rim && onto_hole_rim(v, x)) continue;
       move(v, x);
       if(!(energy() < e0 * (1 - 1e-6))) continue;
       bool ok = true;
@@ -2751,6 +2799,7 @@ private:
     drop(split_faces); drop(face_neighbour); drop(kind); drop(planes); drop(twin); drop(inner);
     drop(inner_of); drop(top_faces); drop(curve_of); drop(hloc); drop(vregion); drop(face_region);
     drop(tri_region); drop(pillow_sector_faces); drop(pillow_twins); drop(turn_vertices);
+    hole_tree.reset(); drop(hole_segments); drop(near_hole);
 #if defined(__GLIBC__)
     // freed in many small blocks, which the allocator keeps, while the cleanup's large arrays are
     // mapped anew: without giving the pages back the peak would hold both (motorBike 511 -> 447 MB)
@@ -2878,6 +2927,10 @@ private:
   Polygon_list vertex_top_faces;   // top faces (indices into top_faces) at each twin
   std::vector<Kind> kind;
   std::vector<Index> sheet_caps;   // cap vertices at the border of a two-sided sheet
+  std::vector<Segment_3> hole_segments;   // open edges of the input bordering holes (`place_twins()`)
+  std::unique_ptr<Segment_tree> hole_tree;
+  std::vector<char> near_hole;      // surface twins within 2 cells of a hole's border
+  double hole_tiny = 0;
   std::vector<std::uint8_t> planes;
   std::vector<Index> hang_of;
   std::vector<std::vector<std::pair<Index, double>>> hang_masters;
