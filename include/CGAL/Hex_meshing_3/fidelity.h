@@ -99,11 +99,7 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
       }
       i = j;
     }
-    const std::vector<char> sealed = internal::sealed_border_edges<GT>(border, border_ends, internal::seam_tolerance(domain.bbox()));
-    std::size_t kept = 0;
-    for(std::size_t i = 0; i < border.size(); ++i)
-      if(!sealed[i]) border[kept++] = border[i];
-    border.resize(kept);
+    internal::remove_sealed_border_edges<GT>(border, border_ends, internal::seam_tolerance(domain.bbox()));
   }
   typedef typename std::vector<Segment_3>::const_iterator Seg_it;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Segment_tree;

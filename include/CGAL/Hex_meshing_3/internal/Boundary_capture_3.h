@@ -733,8 +733,10 @@ private:
   bool onto_hole_rim(Index v, const Vec3& x) const
   {
     return hole_tree && v < near_hole.size() && near_hole[v] && kind[v] == SURFACE &&
-           CGAL::to_double(hole_tree->squared_distance(Point_3(x[0], x[1], x[2]))) <= hole_tiny * hole_tiny;
+           CGAL::to_double(hole_tree->squared_distance(Point_3(x[0], x[1], x[2]))) <= tiny_length() * tiny_length();
   }
+  // a length below which two points of the meshing box are one (a point on a segment)
+  double tiny_length() const { return 1e-9 * (box_hi[0] - box_lo[0] + box_hi[1] - box_lo[1] + box_hi[2] - box_lo[2]); }
   Vec3 closest_on_curve(const Vec3& x, int curve) const
   {
     return vec(curve_trees[std::size_t(curve)]->closest_point(Point_3(x[0], x[1], x[2])));
@@ -770,12 +772,7 @@ private:
           open_segments.emplace_back(fc->point(e.vertices[0]), fc->point(e.vertices[1]));
           ends.push_back({{std::uint32_t(e.vertices[0]), std::uint32_t(e.vertices[1])}});
         }
-      const std::vector<char> sealed = sealed_border_edges<GT>(open_segments, ends, seam_tolerance(d.bbox()));
-      std::size_t kept = 0;
-      for(std::size_t i = 0; i < open_segments.size(); ++i)
-        if(!sealed[i]) { ends[kept] = ends[i]; open_segments[kept++] = open_segments[i]; }
-      open_segments.resize(kept);
-      ends.resize(kept);
+      remove_sealed_border_edges<GT>(open_segments, ends, seam_tolerance(d.bbox()));
     }
     if(!open_segments.empty()) {
       open_tree = std::make_unique<Segment_tree>(open_segments.begin(), open_segments.end());
@@ -789,12 +786,13 @@ private:
       std::vector<std::uint32_t> verts;
       for(const auto& e : ends) { verts.push_back(e[0]); verts.push_back(e[1]); }
       std::sort(verts.begin(), verts.end());
+      verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
       auto index_of = [&](std::uint32_t v) { return std::size_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()); };
       std::vector<std::size_t> parent(verts.size());
       std::vector<int> degree(verts.size(), 0);
       for(std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
       auto find = [&](std::size_t x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; };
-      for(const auto& e : ends) {   // (`verts` keeps duplicates: each copy's first index is found)
+      for(const auto& e : ends) {
         const std::size_t a = index_of(e[0]), b = index_of(e[1]);
         ++degree[a]; ++degree[b];
         const std::size_t ra = find(a), rb = find(b);
@@ -802,7 +800,7 @@ private:
       }
       std::vector<char> loop(verts.size(), 1);
       for(std::size_t i = 0; i < verts.size(); ++i)
-        if(index_of(verts[i]) == i && degree[i] != 2) loop[find(i)] = 0;
+        if(degree[i] != 2) loop[find(i)] = 0;
       for(std::size_t i = 0; i < open_segments.size(); ++i) {
         const Segment_3& sg = open_segments[i];
         if(loop[find(index_of(ends[i][0]))] && !d.is_two_sided(d.closest_triangle(CGAL::midpoint(sg.source(), sg.target()))))
@@ -814,7 +812,7 @@ private:
       hole_tree->accelerate_distance_queries();
       near_hole.assign(P.size(), 0);
     }
-    const double tiny = 1e-9 * (box_hi[0] - box_lo[0] + box_hi[1] - box_lo[1] + box_hi[2] - box_lo[2]);
+    const double tiny = tiny_length();
     // outward normal of the staircase at each surface vertex
     std::vector<Vec3> normal(P.size(), Vec3{{0, 0, 0}});
     for(std::size_t f : top_faces) {
@@ -870,7 +868,6 @@ private:
         if(hole_tree && hole_tree->squared_distance(Point_3(c[0], c[1], c[2])) < 4 * hloc[v] * hloc[v]) near_hole[t] = 1;
       }
     }
-    hole_tiny = tiny;
     update_hanging();
   }
 
@@ -2799,7 +2796,7 @@ private:
     drop(split_faces); drop(face_neighbour); drop(kind); drop(planes); drop(twin); drop(inner);
     drop(inner_of); drop(top_faces); drop(curve_of); drop(hloc); drop(vregion); drop(face_region);
     drop(tri_region); drop(pillow_sector_faces); drop(pillow_twins); drop(turn_vertices);
-    hole_tree.reset(); drop(hole_segments); drop(near_hole);
+    hole_tree.reset(); drop(hole_segments); drop(near_hole); drop(sheet_caps);
 #if defined(__GLIBC__)
     // freed in many small blocks, which the allocator keeps, while the cleanup's large arrays are
     // mapped anew: without giving the pages back the peak would hold both (motorBike 511 -> 447 MB)
@@ -2930,7 +2927,6 @@ private:
   std::vector<Segment_3> hole_segments;   // open edges of the input bordering holes (`place_twins()`)
   std::unique_ptr<Segment_tree> hole_tree;
   std::vector<char> near_hole;      // surface twins within 2 cells of a hole's border
-  double hole_tiny = 0;
   std::vector<std::uint8_t> planes;
   std::vector<Index> hang_of;
   std::vector<std::vector<std::pair<Index, double>>> hang_masters;

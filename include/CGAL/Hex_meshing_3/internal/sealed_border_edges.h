@@ -57,6 +57,19 @@ std::vector<char> sealed_border_edges(const std::vector<typename GT::Segment_3>&
   return sealed;
 }
 
+// removes the sealed border edges (`sealed_border_edges()`) from `segments` and `ends` alike
+template <typename GT>
+void remove_sealed_border_edges(std::vector<typename GT::Segment_3>& segments,
+                                std::vector<std::array<std::uint32_t, 2>>& ends, double tolerance)
+{
+  const std::vector<char> sealed = sealed_border_edges<GT>(segments, ends, tolerance);
+  std::size_t kept = 0;
+  for(std::size_t i = 0; i < segments.size(); ++i)
+    if(!sealed[i]) { segments[kept] = segments[i]; ends[kept] = ends[i]; ++kept; }
+  segments.resize(kept);
+  ends.resize(kept);
+}
+
 // the tolerance both the capture and `boundary_fidelity()` use: a thousandth of the diagonal of
 // the input's bounding box
 inline double seam_tolerance(const Bbox_3& b)
