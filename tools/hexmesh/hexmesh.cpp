@@ -798,7 +798,7 @@ int main(int argc, char** argv)
             un.push_back({stats.unreached_vertices[i][0], stats.unreached_vertices[i][1], stats.unreached_vertices[i][2]});
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
                            {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces}, {"non_orthogonal_faces", stats.non_orthogonal_faces},
-                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"surface_vertices", stats.surface_vertices},
+                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},

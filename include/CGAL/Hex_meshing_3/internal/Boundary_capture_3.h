@@ -436,6 +436,8 @@ public:
     int patch_rings = 1;                    ///< ... on the vertices of the cells around the cell's (1), of the cells around those (2), ...
     double patch_floor = 0.3;               ///< the joint moves work around the cells below this, and keep a patch only if its count of cells whose scaled Jacobian is below it did not grow
     double patch_sharpness = 30;            ///< ... their penalty exp(k (target - q)) - 1: its k
+    double loosen_curve = 0.2;              ///< the patch around a cell with curve vertices is tried first with them off their curve by at most this (x local size; 0: never)
+    double loosen_corner = 0.1;             ///< ... and with its corner vertices off their corner by at most this (x local size; 0: never)
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -2412,7 +2414,10 @@ private:
   // falls and the guards hold (a backtracking line search); the patch stops after
   // `opt.patch_iterations` steps or `opt.patch_stall` steps without raising its worst cell, and is
   // kept only if its worst cell got better and its count of cells whose scaled Jacobian is below
-  // `opt.patch_floor` did not grow. Gradients by forward differences of constrained moves.
+  // `opt.patch_floor` did not grow. Gradients by forward differences of constrained moves. Around
+  // a cell with curve or corner vertices, the patch is first tried with those loosened: surface
+  // vertices within `opt.loosen_curve` of their curve (`opt.loosen_corner` of their corner), a
+  // guard of every later step (see the loop below).
   // Returns the number of patches kept.
   template <typename Visitor>
   std::size_t polish_patches(Visitor& visitor)
@@ -2466,18 +2471,29 @@ private:
       return r;
     };
     auto evaluate = [&](std::size_t j, double* v) { cell_values(pc[j], v); return summarise(j, v); };
+    // the curve and corner vertices let off their feature: (vertex, its kind before, its region
+    // before, where it was), those of the patches kept and of the patch being tried; a guard keeps
+    // them near their feature in every later patch too
+    struct Loose { Index v; Kind kind; int region; Vec3 at; };
+    std::vector<Loose> loose;
+    std::vector<std::uint32_t> loose_of(P.size(), std::uint32_t(-1));   // vertex -> its entry in `loose`
+    auto near_feature = [&](const Loose& l) {
+      const double h = hloc[l.v] < 1e300 ? hloc[l.v] : 1.0;
+      return l.kind == CORNER ? norm(sub(P[l.v], l.at)) <= opt.loosen_corner * h
+                              : norm(sub(P[l.v], closest_on_curve(P[l.v], curve_of[l.v]))) <= opt.loosen_curve * h;
+    };
     auto guards_hold = [&](const std::vector<Eval>& ev) {
+      for(Index v : pv)
+        if(loose_of[v] != std::uint32_t(-1) && !near_feature(loose[loose_of[v]])) return false;
       for(std::size_t j = 0; j < ev.size(); ++j)
         if(ev[j].q < floor_q(j) || ev[j].sj < floor_sj(j) || ev[j].split < (std::min)(split_old_[j], opt.min_face_split_quality))
           return false;
       return true;
     };
     std::size_t tried = 0;
-    for(const auto& b : bad) {
-      // (polled between patches: a patch is kept whole or not at all)
-      if(cancelled || (++tried % 32 == 0 && !visitor.go_further(1.0))) { cancelled = true; break; }
-      const Index c0 = b.second;
-      if(cell_quality(c0) >= opt.patch_floor) continue;
+    bool loosening = false;   // the patch being tried has loosened vertices
+    // one patch around c0: returns true if kept
+    auto patch = [&](const Index c0) {
       // the patch: the movable vertices of the cells around c0 (a hanging node's masters)
       pv.clear();
       for(Index v : m.hexahedra[c0]) add_work_vertex(v, pv, in_pv);
@@ -2490,7 +2506,7 @@ private:
         }
       }
       for(Index v : pv) in_pv[v] = 0;
-      if(pv.empty()) continue;
+      if(pv.empty()) return false;
       std::sort(pv.begin(), pv.end());
       // the cells they move
       pc.clear();
@@ -2525,6 +2541,7 @@ private:
         sj_it = (std::min)(sj_it, sj_old[j]);
       }
       f_it = f0;
+      const double sj0 = sj_it;
       const std::size_t count0 = count_below();
       const double nonortho_cap = (std::max)(opt.max_non_orthogonality, max_non_orthogonality(pc));
       x0.resize(n);
@@ -2610,8 +2627,47 @@ private:
         if(stalled == opt.patch_stall) break;
       }
       // (`ev` is at the positions now: those of the last step taken, or of the start)
-      if(f_it > f0 + 1e-4 && count_below() <= count0) ++kept;
-      else restore(x0);
+      // (a patch with loosened vertices must not lower its worst scaled Jacobian either)
+      if(f_it > f0 + 1e-4 && count_below() <= count0 && (!loosening || sj_it >= sj0 - 1e-12)) return true;
+      restore(x0);
+      return false;
+    };
+    for(const auto& b : bad) {
+      // (polled between patches: a patch is kept whole or not at all)
+      if(cancelled || (++tried % 32 == 0 && !visitor.go_further(1.0))) { cancelled = true; break; }
+      const Index c0 = b.second;
+      if(cell_quality(c0) >= opt.patch_floor) continue;
+      // The cell's curve and corner vertices may leave their feature (within `loosen_curve` /
+      // `loosen_corner` local sizes of it), sliding on the surface: a cell pinned between two
+      // curves, or at a corner whose curves meet at a narrow angle, opens. The patch is tried
+      // loosened first (kept on the usual terms, and only if its worst scaled Jacobian did not
+      // fall); if it is not kept, the vertices go back to their feature and the plain patch is
+      // tried. Loosened vertices stay surface vertices.
+      const std::size_t first = loose.size();
+      auto unloosen = [&]() {
+        for(std::size_t i = loose.size(); i-- > first;) {
+          const Loose& l = loose[i];
+          kind[l.v] = l.kind;
+          vregion[l.v] = l.region;
+          loose_of[l.v] = std::uint32_t(-1);
+        }
+        loose.resize(first);
+      };
+      if(opt.loosen_curve > 0 || opt.loosen_corner > 0)
+        for(Index v : m.hexahedra[c0])
+          if((kind[v] == CURVE && opt.loosen_curve > 0) || (kind[v] == CORNER && opt.loosen_corner > 0)) {
+            loose_of[v] = std::uint32_t(loose.size());
+            loose.push_back({v, kind[v], vregion[v], P[v]});
+            kind[v] = SURFACE;
+            vregion[v] = region_of_point(P[v]);
+          }
+      if(loose.size() == first) { if(patch(c0)) ++kept; continue; }
+      loosening = true;
+      const bool kept_loose = patch(c0);
+      loosening = false;
+      if(!kept_loose) { unloosen(); if(patch(c0)) ++kept; continue; }
+      ++kept;
+      rep.loosened_vertices += loose.size() - first;
     }
     use_polish = false;
     return kept;
