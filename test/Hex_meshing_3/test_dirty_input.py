@@ -144,12 +144,10 @@ GEOMETRY_OK = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", 
 # (anchor's farthest was 1.9 while non-manifold staircase vertices removed every cell around them)
 NO_FACE_BEYOND_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cylinder", "cube_nonmanifold", "eight", "fandisk",
                                "fandisk_crack", "fin_slot", "rotor", "t20_part"}
-# (fandisk_crack had 15 beyond half until its loosened feature vertices kept the buffer cells
-# whose removal left slits)
 NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight",
-                                    "fandisk_crack", "fin_slot", "t20_part"}
-# where the polish's joint moves let curve or corner vertices off their feature (within 0.2 / 0.1
-# local size) to raise a cell below 0.3 (their minima and counts in the manual)
+                                    "fin_slot", "t20_part"}
+# some of the files where the polish's joint moves let curve or corner vertices off their feature
+# (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
 LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
 # the issue's quality goals, where they are met at those sizes: min scaled Jacobian >= 0.3, and
 # max non-orthogonality <= 65 degrees
@@ -160,9 +158,9 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder",
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
-# (fandisk_crack 0.19 -> 0.12 when loosened feature vertices kept 7 of the 11 buffer cells it
-# removed, each removal leaving a slit in the boundary: one of them is at 0.123)
-MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.265, "teapot": 0.17, "elephant": 0.07, "fandisk_crack": 0.12,
+# (loosened feature vertices: fandisk 0.255 -> 0.270, elephant 0.059 -> 0.076, elephant-with-holes
+# 0.038 -> 0.059, fandisk_crack 0.202 -> 0.210)
+MIN_SJ_FLOOR = {"bunny": 0.24, "fandisk": 0.265, "teapot": 0.17, "elephant": 0.07, "fandisk_crack": 0.2,
                 "elephant-with-holes": 0.055}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)

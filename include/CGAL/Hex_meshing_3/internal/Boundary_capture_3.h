@@ -436,8 +436,8 @@ public:
     int patch_rings = 1;                    ///< ... on the vertices of the cells around the cell's (1), of the cells around those (2), ...
     double patch_floor = 0.3;               ///< the joint moves work around the cells below this, and keep a patch only if its count of cells whose scaled Jacobian is below it did not grow
     double patch_sharpness = 30;            ///< ... their penalty exp(k (target - q)) - 1: its k
-    double loosen_curve = 0.2;              ///< the patch around a cell with curve vertices is tried first with them off their curve by at most this (x local size; 0: never)
-    double loosen_corner = 0.1;             ///< ... and with its corner vertices off their corner by at most this (x local size; 0: never)
+    double loosen_curve = 0.2;              ///< the patch around a cell below `patch_floor` with curve vertices is tried first with them free to leave their curve by at most this (x local size; 0: never)
+    double loosen_corner = 0.1;             ///< ... and with its corner vertices free to leave their corner's point by at most this (x local size; 0: never)
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -2416,8 +2416,9 @@ private:
   // kept only if its worst cell got better and its count of cells whose scaled Jacobian is below
   // `opt.patch_floor` did not grow. Gradients by forward differences of constrained moves. Around
   // a cell with curve or corner vertices, the patch is first tried with those loosened: surface
-  // vertices within `opt.loosen_curve` of their curve (`opt.loosen_corner` of their corner), a
-  // guard of every later step (see the loop below).
+  // vertices of one region, within `opt.loosen_curve` local sizes of their curve
+  // (`opt.loosen_corner` local sizes of their corner's point), a guard of every later step (see
+  // the loop below).
   // Returns the number of patches kept.
   template <typename Visitor>
   std::size_t polish_patches(Visitor& visitor)
@@ -2627,7 +2628,9 @@ private:
         if(stalled == opt.patch_stall) break;
       }
       // (`ev` is at the positions now: those of the last step taken, or of the start)
-      // (a patch with loosened vertices must not lower its worst scaled Jacobian either)
+      // (a patch with loosened vertices must not lower its worst scaled Jacobian either: the
+      // guards keep it from falling below min(its start, `polish_quality`); this rejects the
+      // patches whose worst scaled Jacobian started above `polish_quality` and fell)
       if(f_it > f0 + 1e-4 && count_below() <= count0 && (!loosening || sj_it >= sj0 - 1e-12)) return true;
       restore(x0);
       return false;
@@ -2638,11 +2641,13 @@ private:
       const Index c0 = b.second;
       if(cell_quality(c0) >= opt.patch_floor) continue;
       // The cell's curve and corner vertices may leave their feature (within `loosen_curve` /
-      // `loosen_corner` local sizes of it), sliding on the surface: a cell pinned between two
+      // `loosen_corner` local sizes of it), sliding on the surface (on the side of the curve
+      // whose region they had, else of the nearest triangle's): a cell pinned between two
       // curves, or at a corner whose curves meet at a narrow angle, opens. The patch is tried
       // loosened first (kept on the usual terms, and only if its worst scaled Jacobian did not
       // fall); if it is not kept, the vertices go back to their feature and the plain patch is
-      // tried. Loosened vertices stay surface vertices.
+      // tried. If it is kept, those that left their feature stay surface vertices, the others
+      // take their kind again.
       const std::size_t first = loose.size();
       auto unloosen = [&]() {
         for(std::size_t i = loose.size(); i-- > first;) {
@@ -2659,7 +2664,7 @@ private:
             loose_of[v] = std::uint32_t(loose.size());
             loose.push_back({v, kind[v], vregion[v], P[v]});
             kind[v] = SURFACE;
-            vregion[v] = region_of_point(P[v]);
+            if(vregion[v] < 0) vregion[v] = region_of_point(P[v]);   // (else the side its faces chose)
           }
       if(loose.size() == first) { if(patch(c0)) ++kept; continue; }
       loosening = true;
@@ -2667,6 +2672,16 @@ private:
       loosening = false;
       if(!kept_loose) { unloosen(); if(patch(c0)) ++kept; continue; }
       ++kept;
+      // those that did not leave their feature take their kind again
+      std::size_t k = first;
+      for(std::size_t i = first; i < loose.size(); ++i) {
+        const Loose l = loose[i];
+        const double h = hloc[l.v] < 1e300 ? hloc[l.v] : 1.0;
+        const double off = l.kind == CORNER ? norm(sub(P[l.v], l.at)) : norm(sub(P[l.v], closest_on_curve(P[l.v], curve_of[l.v])));
+        if(off <= 1e-9 * h) { kind[l.v] = l.kind; vregion[l.v] = l.region; loose_of[l.v] = std::uint32_t(-1); }
+        else { loose_of[l.v] = std::uint32_t(k); loose[k++] = l; }
+      }
+      loose.resize(k);
       rep.loosened_vertices += loose.size() - first;
     }
     use_polish = false;
