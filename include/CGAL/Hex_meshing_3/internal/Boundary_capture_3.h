@@ -54,6 +54,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -746,12 +747,13 @@ private:
   Vec3 constrain(Index v, const Vec3& x) const
   {
     switch(kind[v]) {
-    case SURFACE: return clamp_planes(v, closest_on_surface_from(v, clamp_planes(v, x)));
+    case SURFACE: { Vec3 y = clamp_planes(v, closest_on_surface_from(v, clamp_planes(v, x))); return loose_pull ? loose_pull(v, y) : y; }
     case CURVE: return clamp_planes(v, closest_on_curve(x, curve_of[v]));
     case CORNER: case HANGING: return P[v];
     default: return clamp_planes(v, x);
     }
   }
+  std::function<Vec3(Index, const Vec3&)> loose_pull;   // `polish_patches()`: loosened vertices stay near their feature
   int region_of_point(const Vec3& x) const
   {
     if(tri_region.empty()) return -1;
@@ -2483,6 +2485,24 @@ private:
       return l.kind == CORNER ? norm(sub(P[l.v], l.at)) <= opt.loosen_corner * h
                               : norm(sub(P[l.v], closest_on_curve(P[l.v], curve_of[l.v]))) <= opt.loosen_curve * h;
     };
+    // a loosened vertex's constrained position (`constrain()`): on its surface region, pulled
+    // back to within 0.95 x its tolerance of its feature (three rounds of pull and projection;
+    // what is still beyond the tolerance fails the guard below)
+    loose_pull = [&](Index v, const Vec3& y0) {
+      if(loose_of[v] == std::uint32_t(-1)) return y0;
+      const Loose& l = loose[loose_of[v]];
+      const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+      const double tol = 0.95 * (l.kind == CORNER ? opt.loosen_corner : opt.loosen_curve) * h;
+      Vec3 y = y0;
+      for(int it = 0; it < 3; ++it) {
+        const Vec3 f = l.kind == CORNER ? l.at : closest_on_curve(y, curve_of[v]);
+        const double d = norm(sub(y, f));
+        if(d <= tol) break;
+        y = clamp_planes(v, closest_on_surface_from(v, add(f, mul(sub(y, f), tol / d))));
+      }
+      return y;
+    };
+    struct Pull_off { std::function<Vec3(Index, const Vec3&)>& p; ~Pull_off() { p = nullptr; } } pull_off{loose_pull};
     auto guards_hold = [&](const std::vector<Eval>& ev) {
       for(Index v : pv)
         if(loose_of[v] != std::uint32_t(-1) && !near_feature(loose[loose_of[v]])) return false;
