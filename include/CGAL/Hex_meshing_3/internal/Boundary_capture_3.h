@@ -54,7 +54,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -76,6 +75,22 @@ inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
 {
   return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
 }
+
+// Disjoint sets of 0..n-1 whose representative is the set's smallest element (so the roots, and
+// what is ordered by them, do not depend on the order of the unions); path halving.
+template <typename I>
+struct Min_union_find
+{
+  std::vector<I> parent;
+  explicit Min_union_find(std::size_t n) : parent(n) { for(std::size_t i = 0; i < n; ++i) parent[i] = I(i); }
+  I find(I x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; }
+  void unite(I a, I b)
+  {
+    a = find(a);
+    b = find(b);
+    if(a != b) parent[(std::max)(a, b)] = (std::min)(a, b);
+  }
+};
 
 // The face pyramids OpenFOAM checks: each face split into 4 triangles around its vertex average,
 // each triangle with the cell's vertex average forms a tetrahedron that must have a positive
@@ -747,13 +762,39 @@ private:
   Vec3 constrain(Index v, const Vec3& x) const
   {
     switch(kind[v]) {
-    case SURFACE: { Vec3 y = clamp_planes(v, closest_on_surface_from(v, clamp_planes(v, x))); return loose_pull ? loose_pull(v, y) : y; }
+    case SURFACE: {
+      const Vec3 y = clamp_planes(v, closest_on_surface_from(v, clamp_planes(v, x)));
+      return v < loose_of.size() && loose_of[v] != NO_LOOSE ? pull_to_feature(v, y) : y;
+    }
     case CURVE: return clamp_planes(v, closest_on_curve(x, curve_of[v]));
     case CORNER: case HANGING: return P[v];
     default: return clamp_planes(v, x);
     }
   }
-  std::function<Vec3(Index, const Vec3&)> loose_pull;   // `polish_patches()`: loosened vertices stay near their feature
+  // the local cell size at a vertex (1 where it has none)
+  double local_size(Index v) const { return hloc[v] < 1e300 ? hloc[v] : 1.0; }
+  // a curve or corner vertex the polish let off its feature (`polish_patches()`): its kind before,
+  // its region before, where it was
+  struct Loose { Index v; Kind kind; int region; Vec3 at; };
+  static constexpr std::uint32_t NO_LOOSE = std::uint32_t(-1);
+  // the point of the loosened vertex's feature nearest to y, and how far it may be from it
+  Vec3 feature_point(const Loose& l, const Vec3& y) const { return l.kind == CORNER ? l.at : closest_on_curve(y, curve_of[l.v]); }
+  double loose_tolerance(const Loose& l) const { return (l.kind == CORNER ? opt.loosen_corner : opt.loosen_curve) * local_size(l.v); }
+  // a loosened vertex's constrained position `y` (on its surface region) pulled back to within
+  // 0.95 x its tolerance of its feature: three rounds of pull and projection (what is still
+  // beyond the tolerance fails the polish's guard)
+  Vec3 pull_to_feature(Index v, Vec3 y) const
+  {
+    const Loose& l = loose[loose_of[v]];
+    const double tol = 0.95 * (l.kind == CORNER ? opt.loosen_corner : opt.loosen_curve) * local_size(v);
+    for(int it = 0; it < 3; ++it) {
+      const Vec3 f = feature_point(l, y);
+      const double d = norm(sub(y, f));
+      if(d <= tol) break;
+      y = clamp_planes(v, closest_on_surface_from(v, add(f, mul(sub(y, f), tol / d))));
+    }
+    return y;
+  }
   int region_of_point(const Vec3& x) const
   {
     if(tri_region.empty()) return -1;
@@ -792,22 +833,19 @@ private:
       std::sort(verts.begin(), verts.end());
       verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
       auto index_of = [&](std::uint32_t v) { return std::size_t(std::lower_bound(verts.begin(), verts.end(), v) - verts.begin()); };
-      std::vector<std::size_t> parent(verts.size());
+      Min_union_find<std::size_t> uf(verts.size());
       std::vector<int> degree(verts.size(), 0);
-      for(std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
-      auto find = [&](std::size_t x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; };
       for(const auto& e : ends) {
         const std::size_t a = index_of(e[0]), b = index_of(e[1]);
         ++degree[a]; ++degree[b];
-        const std::size_t ra = find(a), rb = find(b);
-        if(ra != rb) parent[(std::max)(ra, rb)] = (std::min)(ra, rb);
+        uf.unite(a, b);
       }
       std::vector<char> loop(verts.size(), 1);
       for(std::size_t i = 0; i < verts.size(); ++i)
-        if(degree[i] != 2) loop[find(i)] = 0;
+        if(degree[i] != 2) loop[uf.find(i)] = 0;
       for(std::size_t i = 0; i < open_segments.size(); ++i) {
         const Segment_3& sg = open_segments[i];
-        if(loop[find(index_of(ends[i][0]))] && !d.is_two_sided(d.closest_triangle(CGAL::midpoint(sg.source(), sg.target()))))
+        if(loop[uf.find(index_of(ends[i][0]))] && !d.is_two_sided(d.closest_triangle(CGAL::midpoint(sg.source(), sg.target()))))
           hole_segments.push_back(sg);
       }
     }
@@ -1196,9 +1234,7 @@ private:
       fan.next[i] = canonical_end(t, q[std::size_t((k + 1) % 4)]);
       fan.prev[i] = canonical_end(t, q[std::size_t((k + 3) % 4)]);
     }
-    std::vector<std::size_t> parent(n);
-    for(std::size_t i = 0; i < n; ++i) parent[i] = i;
-    auto find = [&](std::size_t x) { while(parent[x] != x) x = parent[x] = parent[parent[x]]; return x; };
+    Min_union_find<std::size_t> uf(n);
     for(std::size_t i = 0; i < n; ++i) {
       std::size_t match = n, after = 0, before = 0;
       for(std::size_t j = 0; j < n; ++j) {
@@ -1206,15 +1242,12 @@ private:
         if(fan.next[j] == fan.next[i]) ++after;
       }
       if(before != 1 || after != 1) return -1;
-      if(!cut.count(capture_edge_key(t, fan.next[i]))) {
-        const std::size_t a = find(i), b = find(match);
-        if(a != b) parent[(std::max)(a, b)] = (std::min)(a, b);
-      }
+      if(!cut.count(capture_edge_key(t, fan.next[i]))) uf.unite(i, match);
     }
     int ns = 0;
     std::vector<int> id(n, -1);
     for(std::size_t i = 0; i < n; ++i) {
-      const std::size_t r = find(i);
+      const std::size_t r = uf.find(i);
       if(id[r] < 0) id[r] = ns++;
       fan.sector[i] = id[r];
     }
@@ -1650,9 +1683,7 @@ private:
     // input: union-find over triangles across non-feature edges
     std::unordered_set<std::uint64_t> fe;
     for(const auto& e : fc->edges()) fe.insert(capture_edge_key(e.vertices[0], e.vertices[1]));
-    std::vector<Index> parent(tris.size());
-    for(Index t = 0; t < tris.size(); ++t) parent[t] = t;
-    auto find = [&](Index x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; };
+    Min_union_find<Index> uf(tris.size());
     std::unordered_map<std::uint64_t, Index> first_face;
     for(Index t = 0; t < tris.size(); ++t)
       for(int k = 0; k < 3; ++k) {
@@ -1660,13 +1691,13 @@ private:
         if(fe.count(key)) continue;
         auto it = first_face.find(key);
         if(it == first_face.end()) first_face[key] = t;
-        else { const Index x = find(t), y = find(it->second); if(x != y) parent[(std::max)(x, y)] = (std::min)(x, y); }
+        else uf.unite(t, it->second);
       }
     tri_region.assign(tris.size(), -1);
     int nreg = 0;
     std::vector<int> root_region(tris.size(), -1);
     for(Index t = 0; t < tris.size(); ++t) {
-      const Index r = find(t);
+      const Index r = uf.find(t);
       if(root_region[r] < 0) root_region[r] = nreg++;
       tri_region[t] = root_region[r];
     }
@@ -1676,9 +1707,7 @@ private:
     region_trees.resize(std::size_t(nreg));
     // mesh: components of top faces across non-feature edges
     const std::size_t nf = top_faces.size();
-    std::vector<Index> fparent(nf);
-    for(Index i = 0; i < nf; ++i) fparent[i] = i;
-    auto ffind = [&](Index x) { while(fparent[x] != x) { fparent[x] = fparent[fparent[x]]; x = fparent[x]; } return x; };
+    Min_union_find<Index> fuf(nf);
     std::unordered_map<std::uint64_t, Index> edge_face;
     for(Index i = 0; i < nf; ++i) {
       const auto& q = m.boundary_faces[top_faces[i]].vertices;
@@ -1687,7 +1716,7 @@ private:
         if(feature_edges.count(key)) continue;
         auto it = edge_face.find(key);
         if(it == edge_face.end()) edge_face[key] = i;
-        else { const Index x = ffind(i), y = ffind(it->second); if(x != y) fparent[(std::max)(x, y)] = (std::min)(x, y); }
+        else fuf.unite(i, it->second);
       }
     }
     // each component votes with the regions of its faces' centres' closest triangles; a component
@@ -1722,14 +1751,14 @@ private:
       Vec3 c{{0, 0, 0}};
       for(int k = 0; k < 4; ++k) c = add(c, mul(P[q[k]], 0.25));
       own[i] = tri_region[d.closest_triangle(Point_3(c[0], c[1], c[2]))];
-      votes.push_back({ffind(i), own[i]});
+      votes.push_back({fuf.find(i), own[i]});
     }
     std::unordered_map<Index, int> comp_region;
     tally([&](Index comp, int best, int bc, int total) { comp_region[comp] = 5 * bc >= 4 * total ? best : -1; });
     face_region.assign(nf, -1);
     votes.clear();
     for(Index i = 0; i < nf; ++i) {
-      const int r = comp_region[ffind(i)];
+      const int r = comp_region[fuf.find(i)];
       face_region[i] = r >= 0 ? r : own[i];
       for(Index v : m.boundary_faces[top_faces[i]].vertices) votes.push_back({v, face_region[i]});
     }
@@ -1905,7 +1934,7 @@ private:
     }
     Vec3 best = x0;
     double fb = f0, mb = m0;
-    const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+    const double h = local_size(v);
     // a move must raise the minimum, and no cell may fall below min(its quality, keep_quality):
     // the worst cell does not get better by making a good one bad
     const bool on_rim = onto_hole_rim(v, x0);
@@ -1969,7 +1998,7 @@ private:
   {
     affected_cells(v, cells);
     const Vec3 x0 = P[v];
-    const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+    const double h = local_size(v);
     const double delta2 = 1e-6 * h * h * h * h * h * h;
     auto energy = [&]() {
       double e = 0;
@@ -2474,38 +2503,18 @@ private:
       return r;
     };
     auto evaluate = [&](std::size_t j, double* v) { cell_values(pc[j], v); return summarise(j, v); };
-    // the curve and corner vertices let off their feature: (vertex, its kind before, its region
-    // before, where it was), those of the patches kept and of the patch being tried; a guard keeps
-    // them near their feature in every later patch too
-    struct Loose { Index v; Kind kind; int region; Vec3 at; };
-    std::vector<Loose> loose;
-    std::vector<std::uint32_t> loose_of(P.size(), std::uint32_t(-1));   // vertex -> its entry in `loose`
-    auto near_feature = [&](const Loose& l) {
-      const double h = hloc[l.v] < 1e300 ? hloc[l.v] : 1.0;
-      return l.kind == CORNER ? norm(sub(P[l.v], l.at)) <= opt.loosen_corner * h
-                              : norm(sub(P[l.v], closest_on_curve(P[l.v], curve_of[l.v]))) <= opt.loosen_curve * h;
-    };
-    // a loosened vertex's constrained position (`constrain()`): on its surface region, pulled
-    // back to within 0.95 x its tolerance of its feature (three rounds of pull and projection;
-    // what is still beyond the tolerance fails the guard below)
-    loose_pull = [&](Index v, const Vec3& y0) {
-      if(loose_of[v] == std::uint32_t(-1)) return y0;
-      const Loose& l = loose[loose_of[v]];
-      const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
-      const double tol = 0.95 * (l.kind == CORNER ? opt.loosen_corner : opt.loosen_curve) * h;
-      Vec3 y = y0;
-      for(int it = 0; it < 3; ++it) {
-        const Vec3 f = l.kind == CORNER ? l.at : closest_on_curve(y, curve_of[v]);
-        const double d = norm(sub(y, f));
-        if(d <= tol) break;
-        y = clamp_planes(v, closest_on_surface_from(v, add(f, mul(sub(y, f), tol / d))));
-      }
-      return y;
-    };
-    struct Pull_off { std::function<Vec3(Index, const Vec3&)>& p; ~Pull_off() { p = nullptr; } } pull_off{loose_pull};
+    // the curve and corner vertices let off their feature (those of the patches kept and of the
+    // patch being tried): `constrain()` pulls them back towards it, a guard keeps them near it in
+    // every later patch too
+    loose.clear();
+    loose_of.assign(P.size(), NO_LOOSE);
+    struct Loose_off { Boundary_capture_3& c; ~Loose_off() { c.loose_of.clear(); c.loose.clear(); } } loose_off{*this};
     auto guards_hold = [&](const std::vector<Eval>& ev) {
       for(Index v : pv)
-        if(loose_of[v] != std::uint32_t(-1) && !near_feature(loose[loose_of[v]])) return false;
+        if(loose_of[v] != NO_LOOSE) {
+          const Loose& l = loose[loose_of[v]];
+          if(norm(sub(P[v], feature_point(l, P[v]))) > loose_tolerance(l)) return false;
+        }
       for(std::size_t j = 0; j < ev.size(); ++j)
         if(ev[j].q < floor_q(j) || ev[j].sj < floor_sj(j) || ev[j].split < (std::min)(split_old_[j], opt.min_face_split_quality))
           return false;
@@ -2596,7 +2605,7 @@ private:
           if(!hot) { g[i] = Vec3{{0, 0, 0}}; continue; }
           const Index v = pv[i];
           const Vec3 x = P[v];
-          const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+          const double h = local_size(v);
           const double eps = 1e-6 * h;
           double base = 0;
           for(Index j : vcells[i]) base += ev[j].pen;
@@ -2624,7 +2633,7 @@ private:
         for(double alpha = alpha0; alpha > 1e-3 && !stepped; alpha *= 0.5) {
           for(std::size_t i = 0; i < n; ++i) {
             const Index v = pv[i];
-            const double h = hloc[v] < 1e300 ? hloc[v] : 1.0;
+            const double h = local_size(v);
             move(v, constrain(v, sub(xs[i], mul(g[i], alpha * h / gmax))));
           }
           double e1 = 0;
@@ -2674,7 +2683,7 @@ private:
           const Loose& l = loose[i];
           kind[l.v] = l.kind;
           vregion[l.v] = l.region;
-          loose_of[l.v] = std::uint32_t(-1);
+          loose_of[l.v] = NO_LOOSE;
         }
         loose.resize(first);
       };
@@ -2696,9 +2705,11 @@ private:
       std::size_t k = first;
       for(std::size_t i = first; i < loose.size(); ++i) {
         const Loose l = loose[i];
-        const double h = hloc[l.v] < 1e300 ? hloc[l.v] : 1.0;
-        const double off = l.kind == CORNER ? norm(sub(P[l.v], l.at)) : norm(sub(P[l.v], closest_on_curve(P[l.v], curve_of[l.v])));
-        if(off <= 1e-9 * h) { kind[l.v] = l.kind; vregion[l.v] = l.region; loose_of[l.v] = std::uint32_t(-1); }
+        if(norm(sub(P[l.v], feature_point(l, P[l.v]))) <= 1e-9 * local_size(l.v)) {
+          kind[l.v] = l.kind;
+          vregion[l.v] = l.region;
+          loose_of[l.v] = NO_LOOSE;
+        }
         else { loose_of[l.v] = std::uint32_t(k); loose[k++] = l; }
       }
       loose.resize(k);
@@ -3025,6 +3036,8 @@ private:
   Polygon_list deps, nbrs, snbrs;   // per vertex: its dependent hanging nodes, neighbours, surface neighbours
   Sparse_lists<Index> cnbrs;   // per curve vertex: its neighbours on its chain
   std::vector<double> hloc;
+  std::vector<Loose> loose;               // `polish_patches()`: the loosened vertices
+  std::vector<std::uint32_t> loose_of;    // ... each vertex's entry in `loose` (NO_LOOSE: none; empty outside the polish)
   std::vector<std::vector<Segment_3>> curve_segments;
   std::vector<std::unique_ptr<Segment_tree>> curve_trees;
   std::vector<int> curve_of;
