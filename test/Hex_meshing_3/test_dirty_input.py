@@ -155,15 +155,16 @@ LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
 # vertices)
 # (fandisk rose from 0.255 to 0.302 when the polish let feature vertices off their curve or corner,
 # within 0.2 / 0.1 local size)
-MIN_SJ_03 = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight", "fandisk", "fin_slot",
-             "rotor", "t20_part"}
+# (bunny 0.246 -> 0.323 and elephant 0.078 -> 0.309 with the second polish, whose face pyramids
+# count twice their value)
+MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
+             "fandisk", "fin_slot", "rotor", "t20_part"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
 # (loosened feature vertices: elephant 0.059 -> 0.078, elephant-with-holes 0.038 -> 0.059,
-# fandisk_crack 0.202 -> 0.210)
-MIN_SJ_FLOOR = {"bunny": 0.24, "teapot": 0.17, "elephant": 0.07, "fandisk_crack": 0.2,
-                "elephant-with-holes": 0.055}
+# fandisk_crack 0.202 -> 0.210; the second polish: teapot 0.175 -> 0.183)
+MIN_SJ_FLOOR = {"teapot": 0.18, "fandisk_crack": 0.2, "elephant-with-holes": 0.055}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",

@@ -219,7 +219,8 @@ private:
 namespace internal {
 // OpenFOAM's concave test of one cell from the centres and the outward area vectors of its faces
 // (see `concave_cells()`)
-inline bool concave_cell(const std::vector<Vec3>& centres, const std::vector<Vec3>& outward_areas)
+template <typename Vec3s>
+bool concave_cell(const Vec3s& centres, const Vec3s& outward_areas)
 {
   const double planar_cos_angle = 1.0e-6, VSMALL = 1.0e-300;
   for(std::size_t i = 0; i < centres.size(); ++i) {

@@ -454,6 +454,7 @@ public:
     double patch_sharpness = 30;            ///< ... their penalty exp(k (target - q)) - 1: its k
     double loosen_curve = 0.2;              ///< the patch around a cell below `patch_floor` with curve vertices is tried first with them free to leave their curve by at most this (x local size; 0: never)
     double loosen_corner = 0.1;             ///< ... and with its corner vertices free to leave their corner's point by at most this (x local size; 0: never)
+    double second_polish_pyramid_weight = 2;   ///< the second polish counts the face pyramids at this many times their value (1: no second polish)
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -508,6 +509,19 @@ public:
     lap("repairs");
     if(!cancelled) polish();   // not needed for validity: a cancellation skips it
     if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
+    // The second polish: next to a stretched top face the face pyramids bind before the scaled
+    // Jacobian (bunny: a cell at 0.246 whose inner vertices, moved together, reach 0.35 with no
+    // pyramid below 0.2). The goals are on the scaled Jacobian and OpenFOAM needs the pyramids
+    // positive, so the polish and its joint moves run again with the pyramids counted at
+    // `second_polish_pyramid_weight` times their value, the joint moves around the cells whose
+    // scaled Jacobian is below `patch_floor`, and no move may make a cell concave
+    // (`cell_concave()`). Counting them so in the first polish already loses elsewhere.
+    if(!cancelled && opt.second_polish_pyramid_weight != 1) {
+      second_polish = true;
+      polish();
+      if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
+      second_polish = false;
+    }
     lap("polish");
     assign_patches();
     release_work_data();
@@ -1845,11 +1859,25 @@ private:
   double cell_sj(Index c) const { Vec3 x[8]; corners(c, x); return hex_scaled_jacobian(x); }
   double cell_split(Index c) const { Vec3 x[8]; corners(c, x); return hex_face_split_quality(x); }
   Vec3 cell_centre(Index c) const { Vec3 x[8]; corners(c, x); return hex_centre(x); }
+  // OpenFOAM's concave test (`concave_cell()`) of the cell with its six faces whole
+  bool cell_concave(Index c) const
+  {
+    Vec3 x[8];
+    corners(c, x);
+    std::array<Vec3, 6> fc, fa;
+    for(int k = 0; k < 6; ++k) {
+      const auto& f = hex_local_faces()[std::size_t(k)];
+      foam_face_centre_and_area(4, [&](std::size_t i) { return x[f[i]]; }, fc[std::size_t(k)], fa[std::size_t(k)]);
+    }
+    return concave_cell(fc, fa);
+  }
+  // the face pyramids' weight in `cell_quality()` and `cell_values()`
+  double pyramid_weight() const { return second_polish ? opt.second_polish_pyramid_weight : 1.0; }
   double cell_quality(Index c) const
   {
     Vec3 x[8];
     corners(c, x);
-    const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x));
+    const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x) * pyramid_weight());
     // the polish counts the warp too (its face splits are guarded apart, in `improve()`)
     if(use_split_warp || use_polish) return (std::min)(q, split_warp_quality(c, x));
     if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
@@ -1929,6 +1957,7 @@ private:
       if(use_polish) {   // and no face split may get worse below the repair's threshold
         split_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) split_old[i] = cell_split(cells[i]);
+        if(second_polish) { conc_old.resize(cells.size()); for(std::size_t i = 0; i < cells.size(); ++i) conc_old[i] = cell_concave(cells[i]); }
       }
       nonortho_cap = (std::max)(use_polish ? opt.max_non_orthogonality : 60.0, max_non_orthogonality(cells));
     }
@@ -1949,6 +1978,7 @@ private:
         if(q < (std::min)(q_old[i], opt.keep_quality)) return;
         if(guard_sj && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
         if(use_polish && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) return;
+        if(use_polish && second_polish && !conc_old[i] && cell_concave(cells[i])) return;
         f = (std::min)(f, q);
         mean += q;
       }
@@ -2419,6 +2449,7 @@ private:
     corners(c, x);
     hex_scaled_jacobians(x, v);
     hex_pyramid_qualities(x, v + 9);
+    if(second_polish) for(int i = 9; i < 33; ++i) v[i] *= pyramid_weight();
     hex_face_split_qualities(x, v + 33);
     for(int f = 0; f < 6; ++f) v[57 + f] = 1;
     if(c < split_faces.size())
@@ -2450,6 +2481,9 @@ private:
   // vertices of one region, within `opt.loosen_curve` local sizes of their curve
   // (`opt.loosen_corner` local sizes of their corner's point), a guard of every later step (see
   // the loop below).
+  // In the second polish (`second_polish`): the pyramids weighted (`pyramid_weight()`), the
+  // patches around the cells whose scaled Jacobian is below `opt.patch_floor`, and a step may not
+  // make a patch cell concave (`cell_concave()`) that was not.
   // Returns the number of patches kept.
   template <typename Visitor>
   std::size_t polish_patches(Visitor& visitor)
@@ -2459,7 +2493,7 @@ private:
     use_polish = true;
     std::vector<std::pair<double, Index>> bad;
     for(Index c = 0; c < m.hexahedra.size(); ++c) {
-      const double q = cell_quality(c);
+      const double q = second_polish ? cell_sj(c) : cell_quality(c);
       if(q < opt.patch_floor) bad.push_back({q, c});
     }
     std::sort(bad.begin(), bad.end());
@@ -2574,6 +2608,11 @@ private:
       const double sj0 = sj_it;
       const std::size_t count0 = count_below();
       const double nonortho_cap = (std::max)(opt.max_non_orthogonality, max_non_orthogonality(pc));
+      if(second_polish) { conc_patch.resize(nc); for(std::size_t j = 0; j < nc; ++j) conc_patch[j] = cell_concave(pc[j]); }
+      auto no_new_concave = [&]() {
+        if(second_polish) for(std::size_t j = 0; j < nc; ++j) if(!conc_patch[j] && cell_concave(pc[j])) return false;
+        return true;
+      };
       x0.resize(n);
       for(std::size_t i = 0; i < n; ++i) x0[i] = P[pv[i]];
       auto restore = [&](const std::vector<Vec3>& x) { for(std::size_t i = 0; i < n; ++i) move(pv[i], x[i]); };
@@ -2638,7 +2677,7 @@ private:
           }
           double e1 = 0;
           for(std::size_t j = 0; j < nc; ++j) { ev1[j] = evaluate(j, vals.data()); e1 += ev1[j].pen; }
-          if(e1 < e * (1 - 1e-6) && guards_hold(ev1) && max_non_orthogonality(pc) <= nonortho_cap) {
+          if(e1 < e * (1 - 1e-6) && guards_hold(ev1) && max_non_orthogonality(pc) <= nonortho_cap && no_new_concave()) {
             e = e1;
             stepped = true;
             alpha0 = (std::min)(0.2, 2 * alpha);
@@ -2668,7 +2707,7 @@ private:
       // (polled between patches: a patch is kept whole or not at all)
       if(cancelled || (++tried % 32 == 0 && !visitor.go_further(1.0))) { cancelled = true; break; }
       const Index c0 = b.second;
-      if(cell_quality(c0) >= opt.patch_floor) continue;
+      if((second_polish ? cell_sj(c0) : cell_quality(c0)) >= opt.patch_floor) continue;
       // The cell's curve and corner vertices may leave their feature (within `loosen_curve` /
       // `loosen_corner` local sizes of it), sliding on the surface (on the side of the curve
       // whose region they had, else of the nearest triangle's): a cell pinned between two
@@ -3050,6 +3089,8 @@ private:
   std::vector<std::unique_ptr<Tree>> region_trees;
   std::vector<int> face_region, vregion, tri_region;
   bool cancelled = false;
+  bool second_polish = false;      // the second polish: the face pyramids weighted, the cells' concavity guarded
+  std::vector<char> conc_old, conc_patch;   // (the second polish) the cells concave before a move
   bool use_polish = false;        // cell_quality() counts the split faces' warp, improve() guards the rest (the polish)
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
