@@ -2491,9 +2491,11 @@ private:
     const double t = opt.patch_target, k_sharp = opt.patch_sharpness, slack = 0.005;
     const double split_scale = t / (2 * opt.min_face_split_quality);
     use_polish = true;
+    // what a cell must be below to have a patch (the second polish: its scaled Jacobian)
+    auto seed_value = [&](Index c) { return second_polish ? cell_sj(c) : cell_quality(c); };
     std::vector<std::pair<double, Index>> bad;
     for(Index c = 0; c < m.hexahedra.size(); ++c) {
-      const double q = second_polish ? cell_sj(c) : cell_quality(c);
+      const double q = seed_value(c);
       if(q < opt.patch_floor) bad.push_back({q, c});
     }
     std::sort(bad.begin(), bad.end());
@@ -2503,6 +2505,7 @@ private:
     std::vector<std::vector<Index>> vcells;   // per patch vertex: its cells (positions in pc), sorted
     std::vector<Vec3> x0, xs, g, ga;
     std::vector<double> q_old, sj_old, split_old_, split_ref, cv, vals, gbase;   // cv: the patch cells' values
+    std::vector<char> conc_patch;   // (the second polish) the patch cells concave at its start
     struct Eval { double pen, q, sj, split; };
     std::vector<Eval> ev, ev1;
     std::vector<std::pair<Index, int>> active;   // the values near their floor: (cell in pc, value)
@@ -2707,7 +2710,7 @@ private:
       // (polled between patches: a patch is kept whole or not at all)
       if(cancelled || (++tried % 32 == 0 && !visitor.go_further(1.0))) { cancelled = true; break; }
       const Index c0 = b.second;
-      if((second_polish ? cell_sj(c0) : cell_quality(c0)) >= opt.patch_floor) continue;
+      if(seed_value(c0) >= opt.patch_floor) continue;
       // The cell's curve and corner vertices may leave their feature (within `loosen_curve` /
       // `loosen_corner` local sizes of it), sliding on the surface (on the side of the curve
       // whose region they had, else of the nearest triangle's): a cell pinned between two
@@ -3090,7 +3093,7 @@ private:
   std::vector<int> face_region, vregion, tri_region;
   bool cancelled = false;
   bool second_polish = false;      // the second polish: the face pyramids weighted, the cells' concavity guarded
-  std::vector<char> conc_old, conc_patch;   // (the second polish) the cells concave before a move
+  std::vector<char> conc_old;     // (the second polish, `improve()`) the cells concave before the move
   bool use_polish = false;        // cell_quality() counts the split faces' warp, improve() guards the rest (the polish)
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
