@@ -50,7 +50,9 @@ namespace internal {
 // The nine scaled Jacobians of a hexahedron given as 8 corner vectors (VTK order), unclamped:
 // its corners' (j[0..7], the three edges at corner i, normalised) and its centre's (j[8], the
 // three principal axes). Verdict's scaled Jacobian is their minimum, clamped to [-1, 1].
-inline void hex_scaled_jacobians(const Vec3* x, double* j)
+// With `stop`, the values stop at the first one below it: returns how many were written (9 if
+// none is below `stop`).
+inline int hex_scaled_jacobians(const Vec3* x, double* j, double stop = -std::numeric_limits<double>::infinity())
 {
   static constexpr int nb[8][3] = {{1,3,4},{2,0,5},{3,1,6},{0,2,7},{7,5,0},{4,6,1},{5,7,2},{6,4,3}};
   // the squared lengths of the 12 edges (`hex_local_edges()`), and which three meet at each corner
@@ -67,13 +69,16 @@ inline void hex_scaled_jacobians(const Vec3* x, double* j)
     if(!(l > 0)) return 0.0;
     return dot(a, cross(b, c)) / l;
   };
-  for(int i = 0; i < 8; ++i)
+  for(int i = 0; i < 8; ++i) {
     j[i] = det(sub(x[nb[i][0]], x[i]), sub(x[nb[i][1]], x[i]), sub(x[nb[i][2]], x[i]),
                ll[ce[i][0]] * ll[ce[i][1]] * ll[ce[i][2]]);
+    if(j[i] < stop) return i + 1;
+  }
   const Vec3 X1 = add(add(sub(x[1], x[0]), sub(x[2], x[3])), add(sub(x[5], x[4]), sub(x[6], x[7])));
   const Vec3 X2 = add(add(sub(x[3], x[0]), sub(x[2], x[1])), add(sub(x[7], x[4]), sub(x[6], x[5])));
   const Vec3 X3 = add(add(sub(x[4], x[0]), sub(x[5], x[1])), add(sub(x[6], x[2]), sub(x[7], x[3])));
   j[8] = det(X1, X2, X3, dot(X1, X1) * dot(X2, X2) * dot(X3, X3));
+  return 9;
 }
 
 // the smallest of n values

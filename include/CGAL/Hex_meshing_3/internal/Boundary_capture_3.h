@@ -96,7 +96,9 @@ struct Min_union_find
 // each triangle with the cell's vertex average forms a tetrahedron that must have a positive
 // volume. Their 24 scaled volumes (6V / product of the 3 edge lengths at the face centre)
 // relative to a cube's, face by face: 1 for a cube, <= 0 when a pyramid is inverted.
-inline void hex_pyramid_qualities(const Vec3* x, double* out)
+// With `stop`, the values stop at the first one below it: returns how many were written (24 if
+// none is below `stop`).
+inline int hex_pyramid_qualities(const Vec3* x, double* out, double stop = -std::numeric_limits<double>::infinity())
 {
   Vec3 cc{{0, 0, 0}};
   for(int k = 0; k < 8; ++k) cc = add(cc, x[k]);
@@ -112,11 +114,13 @@ inline void hex_pyramid_qualities(const Vec3* x, double* out)
     for(int i = 0; i < 4; ++i) {
       const int j = (i + 1) & 3;
       const double l = std::sqrt(aa[i] * aa[j] * uu);
-      out[n++] = l > 0 ? -dot(cross(a[i], a[j]), u) / l : 0.0;
+      out[n] = l > 0 ? -dot(cross(a[i], a[j]), u) / l : 0.0;
+      if(out[n++] < stop) return n;
     }
   }
   // a cube: a, b = half diagonals of a face (orthogonal, length sqrt(2)/2), u = half an edge,
   // normal to the face: |a x b| |u| / (|a| |b| |u|) = 1
+  return n;
 }
 // the smallest of them
 inline double hex_pyramid_quality(const Vec3* x)
@@ -1877,7 +1881,39 @@ private:
   {
     Vec3 x[8];
     corners(c, x);
-    const double q = (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x) * pyramid_weight());
+    return finish_quality(c, x, (std::min)(hex_scaled_jacobian(x), hex_pyramid_quality(x) * pyramid_weight()));
+  }
+  // `cell_quality(c)` if it is at least `floor`, else some value below `floor`: the scaled
+  // Jacobians, then the face pyramids, are computed only until one falls below it (most trial
+  // moves fail on one cell, at one value). `sj`, if given, receives the cell's scaled Jacobian
+  // when the quality is at least `floor`. (The same values as `cell_quality()`, to the bit.)
+  double cell_quality_above(Index c, double floor, double* sj = nullptr) const
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    if(use_non_orthogonality && !(use_split_warp || use_polish)) {   // a quality not from these values
+      const double q = cell_quality(c);
+      if(sj && q >= floor) *sj = cell_sj(c);
+      return q;
+    }
+    Vec3 x[8];
+    corners(c, x);
+    double v[24];
+    const double stop = floor > -1 ? floor : -inf;   // (the scaled Jacobian is clamped to [-1, 1])
+    const int nj = hex_scaled_jacobians(x, v, stop);
+    if(v[nj - 1] < stop) return v[nj - 1];
+    const double s = (std::max)(-1.0, (std::min)(1.0, min_of(v, 9)));
+    if(sj) *sj = s;
+    const double w = pyramid_weight();
+    const int np = hex_pyramid_qualities(x, v, stop / w);
+    if(v[np - 1] < stop / w) {
+      if(v[np - 1] * w < floor) return v[np - 1] * w;
+      hex_pyramid_qualities(x, v);   // (round-off at the boundary: all of them)
+    }
+    return finish_quality(c, x, (std::min)(s, min_of(v, 24) * w));
+  }
+  // the quality from q = min(scaled Jacobian, weighted face pyramids), in the current mode
+  double finish_quality(Index c, const Vec3* x, double q) const
+  {
     // the polish counts the warp too (its face splits are guarded apart, in `improve()`)
     if(use_split_warp || use_polish) return (std::min)(q, split_warp_quality(c, x));
     if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
@@ -1972,11 +2008,15 @@ private:
       if(norm(sub(x, x0)) < 1e-12 * h) return;
       if(!on_rim && onto_hole_rim(v, x)) return;
       move(v, x);
+      // (the rule below takes no trial with a cell below max(f0, fb): none is looked at further)
+      const double need = (std::max)(f0, fb - 1e-12);
       double f = 1, mean = 0;
       for(std::size_t i = 0; i < cells.size(); ++i) {
-        const double q = cell_quality(cells[i]);
-        if(q < (std::min)(q_old[i], opt.keep_quality)) return;
-        if(guard_sj && cell_sj(cells[i]) < (std::min)(base_old[i], sj_floor)) return;
+        const double floor = (std::max)((std::min)(q_old[i], opt.keep_quality), need);
+        double sj = 1;
+        const double q = cell_quality_above(cells[i], floor, guard_sj ? &sj : nullptr);
+        if(q < floor) return;
+        if(guard_sj && sj < (std::min)(base_old[i], sj_floor)) return;
         if(use_polish && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) return;
         if(use_polish && second_polish && !conc_old[i] && cell_concave(cells[i])) return;
         f = (std::min)(f, q);
@@ -2074,8 +2114,10 @@ private:
       move(v, x);
       if(!(energy() < e0 * (1 - 1e-6))) continue;
       bool ok = true;
-      for(std::size_t i = 0; i < cells.size() && ok; ++i)
-        ok = cell_quality(cells[i]) >= (std::min)(q_old[i], opt.keep_quality);
+      for(std::size_t i = 0; i < cells.size() && ok; ++i) {
+        const double floor = (std::min)(q_old[i], opt.keep_quality);
+        ok = cell_quality_above(cells[i], floor) >= floor;
+      }
       if(ok) return true;
     }
     move(v, x0);
@@ -2101,7 +2143,7 @@ private:
     // what `improve()` and `relax()` find depends on the positions they read and on the vertex
     // kinds (constraints): a change of kinds, or a move outside the sweeps, starts a new epoch
     auto new_epoch = [&]() { epoch = next_stamp(); };
-    for(Index c = 0; c < m.hexahedra.size(); ++c) if(cell_quality(c) < opt.target_quality) low.push_back(c);
+    for(Index c = 0; c < m.hexahedra.size(); ++c) if(cell_quality_above(c, opt.target_quality) < opt.target_quality) low.push_back(c);
     auto add_vertex = [&](Index v) { add_work_vertex(v, work, in_work); };
     // improves the vertices in `work`; returns the number moved and refreshes `low`
     auto sweep = [&](bool smooth_energy) {
@@ -2242,8 +2284,10 @@ private:
           const Vec3 y = add(x0, mul(sub(target, x0), t));
           move(v, t == 1.0 || goal == SURFACE ? y : constrain(v, y));
           bool ok = true;
-          for(std::size_t i = 0; i < cells.size() && ok; ++i)
-            ok = cell_quality(cells[i]) >= (std::min)(q_old[i], keep);
+          for(std::size_t i = 0; i < cells.size() && ok; ++i) {
+            const double floor = (std::min)(q_old[i], keep);
+            ok = cell_quality_above(cells[i], floor) >= floor;
+          }
           if(!ok) continue;
           if(t == 1.0) {
             if(kind[v] == CAP) --rep.cap_vertices;   // on its sheet's border now
