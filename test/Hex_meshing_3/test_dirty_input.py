@@ -157,14 +157,17 @@ LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
 # within 0.2 / 0.1 local size)
 # (bunny 0.246 -> 0.323 and elephant 0.078 -> 0.309 with the second polish, whose face pyramids
 # count twice their value)
+# (fandisk_crack 0.210 -> 0.325 and teapot 0.183 -> 0.293 when the open edges along a smooth seam or
+# crack stopped being features, one side of a crease along a seam is kept, and curve ends across
+# a crack are joined)
 MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
-             "fandisk", "fin_slot", "rotor", "t20_part"}
+             "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
 # (loosened feature vertices: elephant 0.059 -> 0.078, elephant-with-holes 0.038 -> 0.059,
 # fandisk_crack 0.202 -> 0.210; the second polish: teapot 0.175 -> 0.183)
-MIN_SJ_FLOOR = {"teapot": 0.18, "fandisk_crack": 0.2, "elephant-with-holes": 0.055}
+MIN_SJ_FLOOR = {"teapot": 0.28, "elephant-with-holes": 0.055}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
@@ -746,6 +749,7 @@ def main():
     # surface of the test data, at the sizes of BODY_FITTED_SIZES (data/MANIFEST.md)
     print("[body-fitted boundary on every test surface]")
     env = dict(os.environ, WM_PROJECT_DIR="/usr/share/openfoam")
+    features_of = {}
     for name in sorted(os.listdir(D)):
         if not name.endswith(".off"):
             continue
@@ -806,6 +810,7 @@ def main():
         if stem == "fandisk_crack":   # its border edges run along each other: a crack, not a hole
             check(fi["cap_faces"] == 0 and j["boundary"]["cap_vertices"] == 0,
                   f"{stem}: the crack is not capped ({fi['cap_faces']} cap faces, {j['boundary']['cap_vertices']} cap vertices)")
+        features_of[stem] = dict(j["features"], input_boundary_edges=topo["input"]["boundary_edges"])
         check(fi["mesh_to_input_mean"] <= 0.2 * s_,
               f"{stem}: mean distance of boundary faces to the input {fi['mesh_to_input_mean'] / s_:.3f} x surface size <= 0.2 "
               f"(max {fi['mesh_to_input_max'] / s_:.2f}, input->mesh max {fi['input_to_mesh_max'] / s_:.2f}; "
@@ -840,6 +845,14 @@ def main():
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])
             check(same, f"{stem}: boundary has the input's components and Euler characteristic "
                         f"({topo['mesh_boundary']['components']}, {topo['mesh_boundary']['euler_characteristic']})")
+    # a crack through a smooth surface is no feature: fandisk_crack's curves are fandisk's (its
+    # open edges left are one side of the creases the crack runs along)
+    if "fandisk" in features_of and "fandisk_crack" in features_of:
+        fc, fd = features_of["fandisk_crack"], features_of["fandisk"]
+        check(fc["curves"] == fd["curves"] and fc["seam_edges_left_out"] > 0 and fc["seam_bridges"] > 0 and
+              fc["input_open_edges"] == fc["input_boundary_edges"] and fc["open_edges"] < fc["input_open_edges"] / 10,
+              f"fandisk_crack: {fc['curves']} feature curves, fandisk's {fd['curves']} ({fc['seam_edges_left_out']} open edges "
+              f"left out of {fc['input_open_edges']}, {fc['seam_bridges']} curve ends joined across the crack)")
 
     print()
     if FAILURES:

@@ -460,6 +460,9 @@ int main(int argc, char** argv)
     if(!quiet && features.number_of_smooth_edges())
       std::cerr << " (" << features.number_of_smooth_edges() << " sharp edges left out: not sharp at the scale "
                 << feature_scale << " or not standing out " << feature_contrast << " times from the edges around)";
+    if(!quiet && features.number_of_smooth_seam_edges())
+      std::cerr << " (" << features.number_of_smooth_seam_edges() << " open edges left out: along a seam or a crack, smooth "
+                << "across it or the second side of a crease; " << features.number_of_seam_bridges() << " curve ends joined across it)";
     if(!quiet)
       std::cerr << "; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
@@ -677,6 +680,9 @@ int main(int argc, char** argv)
       j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
                        {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},
                        {"open_edges", features.number_of_edges(FC::OPEN)},
+                       {"input_open_edges", features.number_of_edges(FC::OPEN) + features.number_of_smooth_seam_edges()},
+                       {"seam_edges_left_out", features.number_of_smooth_seam_edges()},
+                       {"seam_bridges", features.number_of_seam_bridges()},
                        {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},
                        {"part_border_edges", features.number_of_edges(FC::PATCH_BORDER)},
                        {"curves", features.curves().size()}, {"corners", features.corners().size()},

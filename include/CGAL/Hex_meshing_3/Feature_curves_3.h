@@ -11,6 +11,7 @@
 // apply).
 
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
+#include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 
 #include <algorithm>
 #include <array>
@@ -42,11 +43,16 @@ public:
   typedef std::uint32_t Index;
 
   /// what makes an edge a feature (a bit set: an edge may be several)
-  enum Kind : std::uint8_t { SHARP = 1, OPEN = 2, NON_MANIFOLD = 4, PATCH_BORDER = 8 };
+  /// (SEAM: no input edge, it joins two curve ends across a seam or a crack, see `Options::open_edges`)
+  enum Kind : std::uint8_t { SHARP = 1, OPEN = 2, NON_MANIFOLD = 4, PATCH_BORDER = 8, SEAM = 16 };
 
   struct Options
   {
     double feature_angle = 30;     ///< degrees; an edge whose face normals differ by at least this is sharp
+    /// open edges are features, but for those that are one side of a seam or a crack (another
+    /// border edge within a thousandth of the input's diagonal) across which the two faces are
+    /// not sharp: those are no features. Two curve ends that close, whose curves run on in
+    /// opposite directions (a crease crossing a crack), are joined by a `SEAM` edge: one curve.
     bool open_edges = true;
     bool non_manifold_edges = true;
     bool patch_borders = true;
@@ -102,6 +108,11 @@ public:
   /// the sharp edges left out because they are not sharp at `Options::scale` or do not stand out
   /// by `Options::contrast`
   std::size_t number_of_smooth_edges() const { return m_smooth_edges; }
+  /// the open edges left out because they are one side of a seam or a crack across which the
+  /// surface is smooth (see `Options::open_edges`)
+  std::size_t number_of_smooth_seam_edges() const { return m_smooth_seam_edges; }
+  /// the `SEAM` edges that join curve ends across a seam or a crack
+  std::size_t number_of_seam_bridges() const { return m_seam_bridges; }
 
 private:
   typedef std::array<double, 3> V;
@@ -130,6 +141,7 @@ private:
     }
     // (edge, face, direction) sorted by edge
     struct Half { std::uint64_t key; Index face; bool forward; std::uint8_t slot; };
+    std::vector<Open_edge> open_edges;
     std::vector<Half> half;
     half.reserve(3 * tris.size());
     for(std::size_t f = 0; f < tris.size(); ++f)
@@ -182,6 +194,7 @@ private:
         same_way[3 * h.face + h.slot] = same_way[3 * g.face + g.slot] = char(h.forward != g.forward);
       }
       if(kind) {
+        if(kind & OPEN) open_edges.push_back({Index(m_edges.size()), half[i].face, half[i].forward});
         m_edges.push_back({{Index(half[i].key >> 32), Index(half[i].key & 0xffffffffu)}, kind});
         if(judge) {
           edge_faces.push_back(deg == 2 ? std::array<Index, 2>{{half[i].face, half[i + 1].face}}
@@ -191,8 +204,143 @@ private:
       }
       i = j;
     }
+    if(!open_edges.empty()) {
+      drop_smooth_seams(d, cos_max, normal, open_edges, edge_faces, edge_consistent);
+      bridge_seams(internal::seam_tolerance(d.bbox()), cos_max, judge, edge_faces, edge_consistent);
+    }
     if(judge) judge_sharp_edges(d, o, cos_max, across, same_way, slot_angle, edge_faces, edge_consistent);
     chain(cos_max);
+  }
+
+  // an open edge, its face, and whether the face runs along it from its smaller vertex index
+  struct Open_edge { Index edge; Index face; bool forward; };
+
+  // Open edges that are one side of a seam or a crack (`internal::sealed_border_edges()`: another
+  // border edge passes within the seam tolerance, a thousandth of the input's diagonal): the
+  // faces meet there as across an ordinary edge, so such an edge is no feature if the surface is
+  // smooth across the seam (the angle test of a shared edge, with the face of any border edge
+  // that seals it). A crack through a smooth surface (fandisk_crack) leaves no curve; a border
+  // between two parts along a crease keeps it.
+  void drop_smooth_seams(const Surface_domain_3<GeomTraits>& d, double cos_max, const std::vector<V>& normal,
+                         const std::vector<Open_edge>& open, std::vector<std::array<Index, 2>>& edge_faces,
+                         std::vector<char>& edge_consistent)
+  {
+    std::vector<typename GeomTraits::Segment_3> segments;
+    std::vector<std::array<std::uint32_t, 2>> ends;
+    for(const Open_edge& oe : open) {
+      const auto& e = m_edges[oe.edge].vertices;
+      segments.push_back(typename GeomTraits::Segment_3(m_points[e[0]], m_points[e[1]]));
+      ends.push_back({{e[0], e[1]}});
+    }
+    // the edge's direction as its face runs along it
+    auto along = [&](const Open_edge& oe) {
+      const auto& e = m_edges[oe.edge].vertices;
+      const V a = vec(m_points[e[0]]), b = vec(m_points[e[1]]);
+      return oe.forward ? sub(b, a) : sub(a, b);
+    };
+    // whether the faces of open edges i and j meet at an angle below the feature angle
+    auto smooth = [&](std::size_t i, std::size_t j) {
+      const Open_edge& a = open[i];
+      const Open_edge& b = open[j];
+      double c = dot(normal[a.face], normal[b.face]);
+      if(d.is_two_sided(a.face) || d.is_two_sided(b.face)) c = std::abs(c);
+      else if(dot(along(a), along(b)) > 0) c = -c;   // the faces run the same way along the seam: inconsistent
+      return c > cos_max;
+    };
+    const double tol = internal::seam_tolerance(d.bbox());
+    const std::vector<char> smooth_seam = internal::sealed_border_edges<GeomTraits>(segments, ends, tol, smooth);
+    // a crease along a seam is the border of both sides: one side's edges are enough (those
+    // sealed by no kept edge of the other side, in index order)
+    const std::vector<char> sealed = internal::sealed_border_edges<GeomTraits>(segments, ends, tol);
+    std::vector<char> second(open.size(), 0);
+    auto seconds = [&](std::size_t i, std::size_t j) {   // (the edges are judged in index order)
+      if(smooth_seam[i] || smooth_seam[j] || !sealed[j] || j > i || second[j]) return false;
+      second[i] = 1;
+      return true;
+    };
+    internal::sealed_border_edges<GeomTraits>(segments, ends, tol, seconds);
+    std::vector<char> drop(m_edges.size(), 0);
+    for(std::size_t i = 0; i < open.size(); ++i) {
+      if(!smooth_seam[i] && !second[i]) continue;
+      Edge& e = m_edges[open[i].edge];
+      e.kind = std::uint8_t(e.kind & ~OPEN);
+      if(e.kind == 0) drop[open[i].edge] = 1;
+    }
+    std::size_t k = 0;
+    for(std::size_t e = 0; e < m_edges.size(); ++e) {
+      if(drop[e]) continue;
+      m_edges[k] = m_edges[e];
+      if(!edge_faces.empty()) { edge_faces[k] = edge_faces[e]; edge_consistent[k] = edge_consistent[e]; }
+      ++k;
+    }
+    m_edges.resize(k);
+    if(!edge_faces.empty()) { edge_faces.resize(k); edge_consistent.resize(k); }
+    m_smooth_seam_edges = std::size_t(std::count(drop.begin(), drop.end(), char(1)));
+  }
+
+  // Curve ends across a seam or a crack: two vertices with one feature edge each, closer than
+  // `tol`, whose edges run on in opposite directions (within the feature angle), are joined by a
+  // `SEAM` edge; nearest pairs first. A crease crossing a crack is then one curve, not two with a
+  // pair of corners a hair apart. Deterministic: candidates ordered by (distance, indices).
+  void bridge_seams(double tol, double cos_max, bool judge, std::vector<std::array<Index, 2>>& edge_faces,
+                    std::vector<char>& edge_consistent)
+  {
+    const Index none = Index(-1);
+    std::vector<Index> degree(m_points.size(), 0), edge_at(m_points.size(), none);
+    for(std::size_t e = 0; e < m_edges.size(); ++e)
+      for(Index v : m_edges[e].vertices) { ++degree[v]; edge_at[v] = Index(e); }
+    std::vector<Index> ends;
+    for(Index v = 0; v < m_points.size(); ++v) if(degree[v] == 1) ends.push_back(v);
+    if(ends.size() < 2) return;
+    std::sort(ends.begin(), ends.end(), [&](Index a, Index b) {
+      const double xa = CGAL::to_double(m_points[a].x()), xb = CGAL::to_double(m_points[b].x());
+      return xa != xb ? xa < xb : a < b;
+    });
+    auto direction = [&](Index v) {   // along its edge, away from v
+      const auto& e = m_edges[edge_at[v]].vertices;
+      return unit(sub(vec(m_points[e[0] == v ? e[1] : e[0]]), vec(m_points[v])));
+    };
+    struct Candidate { double d2; Index a, b; };
+    std::vector<Candidate> cand;
+    for(std::size_t i = 0; i < ends.size(); ++i) {
+      const V p = vec(m_points[ends[i]]);
+      for(std::size_t j = i + 1; j < ends.size(); ++j) {
+        const V q = vec(m_points[ends[j]]);
+        if(q[0] - p[0] > tol) break;
+        const V pq = sub(q, p);
+        const double d2 = dot(pq, pq);
+        if(d2 > tol * tol || d2 == 0) continue;
+        if(dot(direction(ends[i]), direction(ends[j])) > -cos_max) continue;   // not running on
+        cand.push_back({d2, (std::min)(ends[i], ends[j]), (std::max)(ends[i], ends[j])});
+      }
+    }
+    std::sort(cand.begin(), cand.end(), [](const Candidate& x, const Candidate& y) {
+      return x.d2 != y.d2 ? x.d2 < y.d2 : x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+    std::vector<char> joined(m_points.size(), 0);
+    std::size_t added = 0;
+    for(const Candidate& c : cand) {
+      if(joined[c.a] || joined[c.b]) continue;
+      joined[c.a] = joined[c.b] = 1;
+      m_edges.push_back({{c.a, c.b}, SEAM});
+      if(judge) { edge_faces.push_back({{none, none}}); edge_consistent.push_back(0); }
+      ++added;
+    }
+    if(added == 0) return;
+    // sorted by vertices again, the judgement's per-edge data alike
+    std::vector<Index> order(m_edges.size());
+    for(Index e = 0; e < order.size(); ++e) order[e] = e;
+    std::sort(order.begin(), order.end(), [&](Index x, Index y) { return m_edges[x].vertices < m_edges[y].vertices; });
+    std::vector<Edge> edges;
+    std::vector<std::array<Index, 2>> faces;
+    std::vector<char> consistent;
+    for(Index e : order) {
+      edges.push_back(m_edges[e]);
+      if(judge) { faces.push_back(edge_faces[e]); consistent.push_back(edge_consistent[e]); }
+    }
+    m_edges.swap(edges);
+    if(judge) { edge_faces.swap(faces); edge_consistent.swap(consistent); }
+    m_seam_bridges = added;
   }
 
   // leaves out the curves of sharp edges that are not sharp at `o.scale` or do not stand out by
@@ -304,10 +452,11 @@ private:
       for(std::size_t k = 0; k + 1 < nv + (cv.closed ? 1 : 0); ++k)
         es.push_back(edge_index(cv.vertices[k], cv.vertices[(k + 1) % nv]));
       bool only_sharp = !es.empty();
-      for(Index e : es) only_sharp = only_sharp && m_edges[e].kind == SHARP;
+      for(Index e : es) only_sharp = only_sharp && (m_edges[e].kind == SHARP || m_edges[e].kind == SEAM);
       if(!only_sharp) continue;
       double len = 0, sharp = 0;
       for(Index e : es) {
+        if(m_edges[e].kind == SEAM) continue;   // (no faces: a hair across a crack)
         const V p = vec(m_points[m_edges[e].vertices[0]]), q = vec(m_points[m_edges[e].vertices[1]]);
         const double l = std::sqrt(dot(sub(q, p), sub(q, p)));
         len += l;
@@ -349,6 +498,15 @@ private:
       return std::make_pair(lo, hi);
     };
     auto other = [&](Index e, Index v) { return m_edges[e].vertices[0] == v ? m_edges[e].vertices[1] : m_edges[e].vertices[0]; };
+    // the other end of edge e, or across a `SEAM` edge (a hair long, in any direction) the other
+    // end of the curve's edge beyond it
+    auto beyond = [&](Index e, Index v) {
+      const Index w = other(e, v);
+      if(m_edges[e].kind != SEAM) return w;
+      const auto r = edges_at(w);
+      for(auto it = r.first; it != r.second; ++it) if(it->second != e) return other(it->second, w);
+      return w;
+    };
     for(std::size_t i = 0; i < inc.size();) {
       std::size_t j = i;
       while(j < inc.size() && inc[j].first == inc[i].first) ++j;
@@ -356,8 +514,8 @@ private:
       bool corner = (j - i) != 2;
       if(!corner) {   // a turn of at least the feature angle
         const V p = vec(m_points[v]);
-        const V a = unit(sub(vec(m_points[other(inc[i].second, v)]), p));
-        const V b = unit(sub(vec(m_points[other(inc[i + 1].second, v)]), p));
+        const V a = unit(sub(vec(m_points[beyond(inc[i].second, v)]), p));
+        const V b = unit(sub(vec(m_points[beyond(inc[i + 1].second, v)]), p));
         corner = -dot(a, b) <= cos_max;   // straight: a = -b
       }
       if(corner) m_corners.push_back(v);
@@ -394,6 +552,8 @@ private:
   std::vector<Edge> m_edges;
   std::vector<Curve> m_curves;
   std::vector<Index> m_corners;
+  std::size_t m_smooth_seam_edges = 0;
+  std::size_t m_seam_bridges = 0;
   std::size_t m_smooth_edges = 0;
 };
 

@@ -26,9 +26,13 @@ namespace internal {
 // with their own copies of the vertices (the motorBike's parts; fandisk_crack), or a border lying
 // along another part's border - not the border of a hole. `segments[i]` runs between the points
 // of indices `ends[i]`. The answer depends only on the input (deterministic).
-template <typename GT>
+struct Any_border_edge { bool operator()(std::size_t, std::size_t) const { return true; } };
+
+// `accept(i, j)`, if given, must also hold for border edge j to seal edge i.
+template <typename GT, typename Accept = Any_border_edge>
 std::vector<char> sealed_border_edges(const std::vector<typename GT::Segment_3>& segments,
-                                      const std::vector<std::array<std::uint32_t, 2>>& ends, double tolerance)
+                                      const std::vector<std::array<std::uint32_t, 2>>& ends, double tolerance,
+                                      const Accept& accept = Accept())
 {
   typedef typename std::vector<typename GT::Segment_3>::const_iterator Seg_it;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Tree;
@@ -51,7 +55,7 @@ std::vector<char> sealed_border_edges(const std::vector<typename GT::Segment_3>&
       const auto& a = ends[i];
       const auto& b = ends[j];
       if(a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
-      if(CGAL::to_double(CGAL::squared_distance(m, segments[j])) <= r * r) { sealed[i] = 1; break; }
+      if(CGAL::to_double(CGAL::squared_distance(m, segments[j])) <= r * r && accept(i, j)) { sealed[i] = 1; break; }
     }
   }
   return sealed;
