@@ -463,6 +463,8 @@ int main(int argc, char** argv)
     if(!quiet && features.number_of_smooth_seam_edges())
       std::cerr << " (" << features.number_of_smooth_seam_edges() << " open edges left out: along a seam or a crack, smooth "
                 << "across it or the second side of a crease; " << features.number_of_seam_bridges() << " curve ends joined across it)";
+    if(!quiet && features.number_of_smooth_hole_rim_edges())
+      std::cerr << " (" << features.number_of_smooth_hole_rim_edges() << " open edges left out: rims of holes in a smooth surface)";
     if(!quiet)
       std::cerr << "; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
@@ -680,7 +682,9 @@ int main(int argc, char** argv)
       j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
                        {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},
                        {"open_edges", features.number_of_edges(FC::OPEN)},
-                       {"input_open_edges", features.number_of_edges(FC::OPEN) + features.number_of_smooth_seam_edges()},
+                       {"input_open_edges", features.number_of_edges(FC::OPEN) + features.number_of_smooth_seam_edges() +
+                                            features.number_of_smooth_hole_rim_edges()},
+                       {"hole_rim_edges_left_out", features.number_of_smooth_hole_rim_edges()},
                        {"seam_edges_left_out", features.number_of_smooth_seam_edges()},
                        {"seam_bridges", features.number_of_seam_bridges()},
                        {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},

@@ -11,6 +11,7 @@
 // apply).
 
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
+#include <CGAL/Hex_meshing_3/internal/Min_union_find.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 
 #include <algorithm>
@@ -53,6 +54,9 @@ public:
     /// border edge within a thousandth of the input's diagonal) across which the two faces are
     /// not sharp: those are no features. Two curve ends that close, whose curves run on in
     /// opposite directions (a crease crossing a crack), are joined by a `SEAM` edge: one curve.
+    /// A closed loop of open edges at least half of whose length has its faces within the feature
+    /// angle of the surface that would close it is the rim of a hole in a smooth surface: no
+    /// feature either (two-sided sheets keep their borders).
     bool open_edges = true;
     bool non_manifold_edges = true;
     bool patch_borders = true;
@@ -111,6 +115,9 @@ public:
   /// the open edges left out because they are one side of a seam or a crack across which the
   /// surface is smooth (see `Options::open_edges`)
   std::size_t number_of_smooth_seam_edges() const { return m_smooth_seam_edges; }
+  /// the open edges left out because they are the rim of a hole in a smooth surface (see
+  /// `Options::open_edges`)
+  std::size_t number_of_smooth_hole_rim_edges() const { return m_hole_rim_edges; }
   /// the `SEAM` edges that join curve ends across a seam or a crack
   std::size_t number_of_seam_bridges() const { return m_seam_bridges; }
 
@@ -205,7 +212,9 @@ private:
       i = j;
     }
     if(!open_edges.empty()) {
-      drop_smooth_seams(d, cos_max, normal, open_edges, edge_faces, edge_consistent);
+      mark_smooth_seams(d, cos_max, normal, open_edges);
+      mark_smooth_hole_rims(d, cos_max, normal, open_edges);
+      remove_dropped_edges(edge_faces, edge_consistent);
       bridge_seams(internal::seam_tolerance(d.bbox()), cos_max, judge, edge_faces, edge_consistent);
     }
     if(judge) judge_sharp_edges(d, o, cos_max, across, same_way, slot_angle, edge_faces, edge_consistent);
@@ -221,9 +230,8 @@ private:
   // smooth across the seam (the angle test of a shared edge, with the face of any border edge
   // that seals it). A crack through a smooth surface (fandisk_crack) leaves no curve; a border
   // between two parts along a crease keeps it.
-  void drop_smooth_seams(const Surface_domain_3<GeomTraits>& d, double cos_max, const std::vector<V>& normal,
-                         const std::vector<Open_edge>& open, std::vector<std::array<Index, 2>>& edge_faces,
-                         std::vector<char>& edge_consistent)
+  void mark_smooth_seams(const Surface_domain_3<GeomTraits>& d, double cos_max, const std::vector<V>& normal,
+                         const std::vector<Open_edge>& open)
   {
     std::vector<typename GeomTraits::Segment_3> segments;
     std::vector<std::array<std::uint32_t, 2>> ends;
@@ -259,13 +267,105 @@ private:
       return true;
     };
     internal::sealed_border_edges<GeomTraits>(segments, ends, tol, seconds);
-    std::vector<char> drop(m_edges.size(), 0);
     for(std::size_t i = 0; i < open.size(); ++i) {
       if(!smooth_seam[i] && !second[i]) continue;
       Edge& e = m_edges[open[i].edge];
       e.kind = std::uint8_t(e.kind & ~OPEN);
-      if(e.kind == 0) drop[open[i].edge] = 1;
+      if(e.kind == 0) ++m_smooth_seam_edges;
     }
+  }
+
+  // Hole rims: the open edges left (not along a seam, not of a two-sided sheet), grouped into
+  // connected chains; a closed one (every vertex on an even number of its edges) has the normal
+  // of the surface that would close it (its vector area as its faces run along it, about its
+  // centroid). A loop at least half of whose length has its faces within the feature angle of
+  // that surface (unsigned) is the rim of a hole in a smooth surface (elephant-with-holes): no
+  // feature, the capture closes it smoothly. Rims the closing surface meets at an angle (a
+  // spout's end, a body's rim under its lid: teapot) stay features.
+  void mark_smooth_hole_rims(const Surface_domain_3<GeomTraits>& d, double cos_max, const std::vector<V>& normal,
+                             const std::vector<Open_edge>& open)
+  {
+    std::vector<std::size_t> rim;   // indices into `open` of the open edges still features
+    for(std::size_t i = 0; i < open.size(); ++i)
+      if((m_edges[open[i].edge].kind & OPEN) && !d.is_two_sided(open[i].face)) rim.push_back(i);
+    if(rim.empty()) return;
+    // chains: union of the edges sharing a vertex
+    std::vector<std::pair<Index, std::size_t>> at;   // (vertex, position in rim)
+    for(std::size_t r = 0; r < rim.size(); ++r)
+      for(Index v : m_edges[open[rim[r]].edge].vertices) at.push_back({v, r});
+    std::sort(at.begin(), at.end());
+    internal::Min_union_find<std::size_t> uf(rim.size());
+    for(std::size_t i = 1; i < at.size(); ++i) if(at[i].first == at[i - 1].first) uf.unite(at[i].second, at[i - 1].second);
+    // only closed loops bound a hole: every vertex of the chain on an even number of its edges
+    // (two, or four where two holes touch)
+    std::vector<char> closed(rim.size(), 1);
+    for(std::size_t i = 0; i < at.size();) {
+      std::size_t j = i;
+      while(j < at.size() && at[j].first == at[i].first) ++j;
+      if((j - i) % 2 != 0) closed[uf.find(at[i].second)] = 0;
+      i = j;
+    }
+    std::vector<V> centre(rim.size(), V{{0, 0, 0}}), area(rim.size(), V{{0, 0, 0}});
+    std::vector<double> count(rim.size(), 0);
+    for(std::size_t r = 0; r < rim.size(); ++r) {
+      const auto& e = m_edges[open[rim[r]].edge].vertices;
+      const V m = {{0.5 * (vec(m_points[e[0]])[0] + vec(m_points[e[1]])[0]), 0.5 * (vec(m_points[e[0]])[1] + vec(m_points[e[1]])[1]),
+                    0.5 * (vec(m_points[e[0]])[2] + vec(m_points[e[1]])[2])}};
+      V& c = centre[uf.find(r)];
+      for(int k = 0; k < 3; ++k) c[std::size_t(k)] += m[std::size_t(k)];
+      count[uf.find(r)] += 1;
+    }
+    for(std::size_t r = 0; r < rim.size(); ++r)
+      if(count[r] > 0) for(double& x : centre[r]) x /= count[r];
+    for(std::size_t r = 0; r < rim.size(); ++r) {
+      const Open_edge& oe = open[rim[r]];
+      const auto& e = m_edges[oe.edge].vertices;
+      const Index a = oe.forward ? e[0] : e[1], b = oe.forward ? e[1] : e[0];   // as the face runs
+      const std::size_t root = uf.find(r);
+      const V ca = sub(vec(m_points[a]), centre[root]), cb = sub(vec(m_points[b]), centre[root]);
+      const V w = cross(ca, cb);
+      for(int k = 0; k < 3; ++k) area[root][std::size_t(k)] += w[std::size_t(k)];
+    }
+    std::vector<double> length(rim.size(), 0);
+    for(std::size_t r = 0; r < rim.size(); ++r) {
+      const auto& e = m_edges[open[rim[r]].edge].vertices;
+      const V d_ = sub(vec(m_points[e[1]]), vec(m_points[e[0]]));
+      length[uf.find(r)] += std::sqrt(dot(d_, d_));
+    }
+    // the loop's length whose face lies within the feature angle of the closing surface
+    std::vector<double> smooth_length(rim.size(), 0);
+    auto edge_length = [&](std::size_t r) {
+      const auto& e = m_edges[open[rim[r]].edge].vertices;
+      const V d_ = sub(vec(m_points[e[1]]), vec(m_points[e[0]]));
+      return std::sqrt(dot(d_, d_));
+    };
+    for(std::size_t r = 0; r < rim.size(); ++r) {
+      const std::size_t root = uf.find(r);
+      const V n = unit(area[root]);
+      if(std::abs(dot(n, normal[open[rim[r]].face])) > cos_max) smooth_length[root] += edge_length(r);
+    }
+    // a loop mostly smooth with its closing surface is a hole's rim: all of it goes (a rim in
+    // pieces would leave curve ends and corners all along it)
+    for(std::size_t r = 0; r < rim.size(); ++r) {
+      const std::size_t root = uf.find(r);
+      if(!closed[root] || count[root] < 3) continue;   // a chain that closes nothing
+      // (a loop folded flat has no closing surface: its area must be at least that of a
+      // rectangle 1 x 20 of its perimeter, 1/484 of the square of its perimeter)
+      const double a2 = dot(area[root], area[root]) / 4;   // (the vector area is half the sum)
+      const double p2 = length[root] * length[root];
+      if(!(a2 * 484 * 484 >= p2 * p2)) continue;
+      if(smooth_length[root] < 0.5 * length[root]) continue;   // the closing surface meets it at an angle
+      Edge& ed = m_edges[open[rim[r]].edge];
+      ed.kind = std::uint8_t(ed.kind & ~OPEN);
+      if(ed.kind == 0) ++m_hole_rim_edges;
+    }
+  }
+
+  // the edges no longer features of any kind (after the seams and the hole rims) are removed
+  void remove_dropped_edges(std::vector<std::array<Index, 2>>& edge_faces, std::vector<char>& edge_consistent)
+  {
+    std::vector<char> drop(m_edges.size(), 0);
+    for(std::size_t e = 0; e < m_edges.size(); ++e) drop[e] = m_edges[e].kind == 0;
     std::size_t k = 0;
     for(std::size_t e = 0; e < m_edges.size(); ++e) {
       if(drop[e]) continue;
@@ -275,7 +375,6 @@ private:
     }
     m_edges.resize(k);
     if(!edge_faces.empty()) { edge_faces.resize(k); edge_consistent.resize(k); }
-    m_smooth_seam_edges = std::size_t(std::count(drop.begin(), drop.end(), char(1)));
   }
 
   // Curve ends across a seam or a crack: two vertices with one feature edge each, closer than
@@ -554,6 +653,7 @@ private:
   std::vector<Index> m_corners;
   std::size_t m_smooth_seam_edges = 0;
   std::size_t m_seam_bridges = 0;
+  std::size_t m_hole_rim_edges = 0;
   std::size_t m_smooth_edges = 0;
 };
 

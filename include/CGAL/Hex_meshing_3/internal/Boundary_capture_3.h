@@ -40,6 +40,7 @@
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
+#include <CGAL/Hex_meshing_3/internal/Min_union_find.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 #include <CGAL/Hex_meshing_3/internal/vertex_cells.h>
 
@@ -75,22 +76,6 @@ inline std::uint64_t capture_edge_key(std::uint32_t a, std::uint32_t b)
 {
   return a < b ? (std::uint64_t(a) << 32 | b) : (std::uint64_t(b) << 32 | a);
 }
-
-// Disjoint sets of 0..n-1 whose representative is the set's smallest element (so the roots, and
-// what is ordered by them, do not depend on the order of the unions); path halving.
-template <typename I>
-struct Min_union_find
-{
-  std::vector<I> parent;
-  explicit Min_union_find(std::size_t n) : parent(n) { for(std::size_t i = 0; i < n; ++i) parent[i] = I(i); }
-  I find(I x) { while(parent[x] != x) { parent[x] = parent[parent[x]]; x = parent[x]; } return x; }
-  void unite(I a, I b)
-  {
-    a = find(a);
-    b = find(b);
-    if(a != b) parent[(std::max)(a, b)] = (std::min)(a, b);
-  }
-};
 
 // The face pyramids OpenFOAM checks: each face split into 4 triangles around its vertex average,
 // each triangle with the cell's vertex average forms a tetrahedron that must have a positive
