@@ -255,18 +255,19 @@ private:
       else if(dot(along(a), along(b)) > 0) c = -c;   // the faces run the same way along the seam: inconsistent
       return c > cos_max;
     };
-    const double tol = internal::seam_tolerance(d.bbox());
-    const std::vector<char> smooth_seam = internal::sealed_border_edges<GeomTraits>(segments, ends, tol, smooth);
+    const std::vector<std::vector<std::size_t>> sealing =
+      internal::sealing_border_edges<GeomTraits>(segments, ends, internal::seam_tolerance(d.bbox()));
+    std::vector<char> smooth_seam(open.size(), 0);
+    for(std::size_t i = 0; i < open.size(); ++i)
+      for(std::size_t j : sealing[i]) if(smooth(i, j)) { smooth_seam[i] = 1; break; }
     // a crease along a seam is the border of both sides: one side's edges are enough (those
     // sealed by no kept edge of the other side, in index order)
-    const std::vector<char> sealed = internal::sealed_border_edges<GeomTraits>(segments, ends, tol);
     std::vector<char> second(open.size(), 0);
-    auto seconds = [&](std::size_t i, std::size_t j) {   // (the edges are judged in index order)
-      if(smooth_seam[i] || smooth_seam[j] || !sealed[j] || j > i || second[j]) return false;
-      second[i] = 1;
-      return true;
-    };
-    internal::sealed_border_edges<GeomTraits>(segments, ends, tol, seconds);
+    for(std::size_t i = 0; i < open.size(); ++i) {
+      if(smooth_seam[i]) continue;
+      for(std::size_t j : sealing[i])
+        if(j < i && !smooth_seam[j] && !second[j]) { second[i] = 1; break; }
+    }
     for(std::size_t i = 0; i < open.size(); ++i) {
       if(!smooth_seam[i] && !second[i]) continue;
       Edge& e = m_edges[open[i].edge];
@@ -305,44 +306,33 @@ private:
       if((j - i) % 2 != 0) closed[uf.find(at[i].second)] = 0;
       i = j;
     }
+    // per chain (at its root): the centroid of its edges' midpoints, its edge count and length
     std::vector<V> centre(rim.size(), V{{0, 0, 0}}), area(rim.size(), V{{0, 0, 0}});
-    std::vector<double> count(rim.size(), 0);
+    std::vector<double> count(rim.size(), 0), length(rim.size(), 0), smooth_length(rim.size(), 0), edge_length(rim.size());
     for(std::size_t r = 0; r < rim.size(); ++r) {
       const auto& e = m_edges[open[rim[r]].edge].vertices;
-      const V m = {{0.5 * (vec(m_points[e[0]])[0] + vec(m_points[e[1]])[0]), 0.5 * (vec(m_points[e[0]])[1] + vec(m_points[e[1]])[1]),
-                    0.5 * (vec(m_points[e[0]])[2] + vec(m_points[e[1]])[2])}};
-      V& c = centre[uf.find(r)];
-      for(int k = 0; k < 3; ++k) c[std::size_t(k)] += m[std::size_t(k)];
-      count[uf.find(r)] += 1;
+      const V p = vec(m_points[e[0]]), q = vec(m_points[e[1]]);
+      const std::size_t root = uf.find(r);
+      for(std::size_t k = 0; k < 3; ++k) centre[root][k] += 0.5 * (p[k] + q[k]);
+      count[root] += 1;
+      edge_length[r] = std::sqrt(dot(sub(q, p), sub(q, p)));
+      length[root] += edge_length[r];
     }
     for(std::size_t r = 0; r < rim.size(); ++r)
       if(count[r] > 0) for(double& x : centre[r]) x /= count[r];
+    // the vector area, its edges taken as their faces run along them
     for(std::size_t r = 0; r < rim.size(); ++r) {
       const Open_edge& oe = open[rim[r]];
       const auto& e = m_edges[oe.edge].vertices;
-      const Index a = oe.forward ? e[0] : e[1], b = oe.forward ? e[1] : e[0];   // as the face runs
+      const Index a = oe.forward ? e[0] : e[1], b = oe.forward ? e[1] : e[0];
       const std::size_t root = uf.find(r);
-      const V ca = sub(vec(m_points[a]), centre[root]), cb = sub(vec(m_points[b]), centre[root]);
-      const V w = cross(ca, cb);
-      for(int k = 0; k < 3; ++k) area[root][std::size_t(k)] += w[std::size_t(k)];
+      const V w = cross(sub(vec(m_points[a]), centre[root]), sub(vec(m_points[b]), centre[root]));
+      for(std::size_t k = 0; k < 3; ++k) area[root][k] += w[k];
     }
-    std::vector<double> length(rim.size(), 0);
-    for(std::size_t r = 0; r < rim.size(); ++r) {
-      const auto& e = m_edges[open[rim[r]].edge].vertices;
-      const V d_ = sub(vec(m_points[e[1]]), vec(m_points[e[0]]));
-      length[uf.find(r)] += std::sqrt(dot(d_, d_));
-    }
-    // the loop's length whose face lies within the feature angle of the closing surface
-    std::vector<double> smooth_length(rim.size(), 0);
-    auto edge_length = [&](std::size_t r) {
-      const auto& e = m_edges[open[rim[r]].edge].vertices;
-      const V d_ = sub(vec(m_points[e[1]]), vec(m_points[e[0]]));
-      return std::sqrt(dot(d_, d_));
-    };
+    // the loop's length whose faces lie within the feature angle of the closing surface
     for(std::size_t r = 0; r < rim.size(); ++r) {
       const std::size_t root = uf.find(r);
-      const V n = unit(area[root]);
-      if(std::abs(dot(n, normal[open[rim[r]].face])) > cos_max) smooth_length[root] += edge_length(r);
+      if(std::abs(dot(unit(area[root]), normal[open[rim[r]].face])) > cos_max) smooth_length[root] += edge_length[r];
     }
     // a loop mostly smooth with its closing surface is a hole's rim: all of it goes (a rim in
     // pieces would leave curve ends and corners all along it)
@@ -364,11 +354,9 @@ private:
   // the edges no longer features of any kind (after the seams and the hole rims) are removed
   void remove_dropped_edges(std::vector<std::array<Index, 2>>& edge_faces, std::vector<char>& edge_consistent)
   {
-    std::vector<char> drop(m_edges.size(), 0);
-    for(std::size_t e = 0; e < m_edges.size(); ++e) drop[e] = m_edges[e].kind == 0;
     std::size_t k = 0;
     for(std::size_t e = 0; e < m_edges.size(); ++e) {
-      if(drop[e]) continue;
+      if(m_edges[e].kind == 0) continue;
       m_edges[k] = m_edges[e];
       if(!edge_faces.empty()) { edge_faces[k] = edge_faces[e]; edge_consistent[k] = edge_consistent[e]; }
       ++k;

@@ -28,7 +28,6 @@ struct Min_union_find
   }
 };
 
-
 } // namespace internal
 } // namespace Hex_meshing_3
 } // namespace CGAL

@@ -20,24 +20,22 @@ namespace CGAL {
 namespace Hex_meshing_3 {
 namespace internal {
 
-// Which border edges of a triangle soup (edges of a single triangle) are sealed: another border
-// edge, sharing no vertex index with it, passes within min(`tolerance`, a quarter of its length)
-// of its midpoint. Such an edge is one side of a seam or a crack - two parts meeting along a line
-// with their own copies of the vertices (the motorBike's parts; fandisk_crack), or a border lying
-// along another part's border - not the border of a hole. `segments[i]` runs between the points
-// of indices `ends[i]`. The answer depends only on the input (deterministic).
-struct Any_border_edge { bool operator()(std::size_t, std::size_t) const { return true; } };
-
-// `accept(i, j)`, if given, must also hold for border edge j to seal edge i.
-template <typename GT, typename Accept = Any_border_edge>
-std::vector<char> sealed_border_edges(const std::vector<typename GT::Segment_3>& segments,
-                                      const std::vector<std::array<std::uint32_t, 2>>& ends, double tolerance,
-                                      const Accept& accept = Accept())
+// The border edges of a triangle soup (edges of a single triangle) that seal each one: those,
+// sharing no vertex index with it, that pass within min(`tolerance`, a quarter of its length) of
+// its midpoint (in index order). An edge sealed by another is one side of a seam or a crack - two
+// parts meeting along a line with their own copies of the vertices (the motorBike's parts;
+// fandisk_crack), or a border lying along another part's border - not the border of a hole.
+// `segments[i]` runs between the points of indices `ends[i]`. The answer depends only on the
+// input (deterministic).
+template <typename GT>
+std::vector<std::vector<std::size_t>> sealing_border_edges(const std::vector<typename GT::Segment_3>& segments,
+                                                           const std::vector<std::array<std::uint32_t, 2>>& ends,
+                                                           double tolerance)
 {
   typedef typename std::vector<typename GT::Segment_3>::const_iterator Seg_it;
   typedef CGAL::AABB_tree<CGAL::AABB_traits<GT, CGAL::AABB_segment_primitive<GT, Seg_it>>> Tree;
-  std::vector<char> sealed(segments.size(), 0);
-  if(segments.size() < 2 || !(tolerance > 0)) return sealed;
+  std::vector<std::vector<std::size_t>> sealing(segments.size());
+  if(segments.size() < 2 || !(tolerance > 0)) return sealing;
   const Tree tree(segments.begin(), segments.end());
   std::vector<typename Tree::Primitive_id> near;
   for(std::size_t i = 0; i < segments.size(); ++i) {
@@ -55,9 +53,21 @@ std::vector<char> sealed_border_edges(const std::vector<typename GT::Segment_3>&
       const auto& a = ends[i];
       const auto& b = ends[j];
       if(a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
-      if(CGAL::to_double(CGAL::squared_distance(m, segments[j])) <= r * r && accept(i, j)) { sealed[i] = 1; break; }
+      if(CGAL::to_double(CGAL::squared_distance(m, segments[j])) <= r * r) sealing[i].push_back(j);
     }
+    std::sort(sealing[i].begin(), sealing[i].end());
   }
+  return sealing;
+}
+
+// which border edges are sealed by another (`sealing_border_edges()`)
+template <typename GT>
+std::vector<char> sealed_border_edges(const std::vector<typename GT::Segment_3>& segments,
+                                      const std::vector<std::array<std::uint32_t, 2>>& ends, double tolerance)
+{
+  const std::vector<std::vector<std::size_t>> sealing = sealing_border_edges<GT>(segments, ends, tolerance);
+  std::vector<char> sealed(segments.size(), 0);
+  for(std::size_t i = 0; i < segments.size(); ++i) sealed[i] = !sealing[i].empty();
   return sealed;
 }
 
