@@ -160,8 +160,13 @@ LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
 # (fandisk_crack 0.210 -> 0.325 and teapot 0.183 -> 0.293 when the open edges along a smooth seam or
 # crack stopped being features, one side of a crease along a seam is kept, and curve ends across
 # a crack are joined)
+# (teapot 0.293 -> 0.312 and elephant-with-holes 0.233 -> 0.313 when a capture leaving cells below
+# 0.3 is run again with other feature-path weights and the best mesh kept, and the rims of holes
+# are judged against a fill of the hole: every file meets the goal)
 MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
-             "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part"}
+             "elephant-with-holes", "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part", "teapot"}
+# the files whose first capture left cells below 0.3 at those sizes (the others are captured once)
+CAPTURE_RETRIED = {"elephant-with-holes", "teapot"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -169,7 +174,8 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # fandisk_crack 0.202 -> 0.210; the second polish: teapot 0.175 -> 0.183)
 # (elephant-with-holes 0.059 -> 0.233 when the rims of its holes in the smooth skin stopped being
 # features)
-MIN_SJ_FLOOR = {"teapot": 0.28, "elephant-with-holes": 0.22}
+# (elephant-with-holes 0.233 -> 0.313, teapot 0.293 -> 0.312: in MIN_SJ_03 since)
+MIN_SJ_FLOOR = {}
 # (every file since the buffer cells at faces beyond 70 degrees are removed: elephant-with-holes
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
@@ -772,6 +778,10 @@ def main():
                                       f"max non-orthogonality {no:.1f} < 80 deg")
         if stem in MIN_SJ_03:
             check(sj >= 0.3, f"{stem}: min scaled Jacobian {sj:.3g} >= 0.3 (the goal)")
+        b_ = j["boundary"]
+        retried = stem in CAPTURE_RETRIED
+        check(b_["capture_choice"] < b_["capture_tries"] and (b_["capture_tries"] > 1) == retried,
+              f"{stem}: {b_['capture_tries']} capture(s) run (more than one: {retried}), setting {b_['capture_choice']} kept")
         if stem in MIN_SJ_FLOOR:
             check(sj >= MIN_SJ_FLOOR[stem], f"{stem}: min scaled Jacobian {sj:.3g} >= {MIN_SJ_FLOOR[stem]} (no regression; the goal is 0.3)")
         if stem in NON_ORTHO_65:

@@ -771,9 +771,18 @@ void test_features()
     // mostly within the feature angle of the surface closing them): left out
     assert(f.number_of_edges(Features::OPEN) + f.number_of_smooth_hole_rim_edges() + f.number_of_smooth_seam_edges() ==
            holes.input_summary().boundary_edges);
-    assert(f.number_of_smooth_hole_rim_edges() > 0 && f.number_of_smooth_seam_edges() == 0);
+    assert(f.number_of_smooth_seam_edges() == 0);
+    // its holes were cut in the smooth skin: judged against the fill of each hole, nearly every
+    // rim is smooth (1342 of its 1353 border edges; against the plane of each loop: 631)
+    assert(f.number_of_smooth_hole_rim_edges() >= 0.95 * double(holes.input_summary().boundary_edges));
     std::cout << "  elephant-with-holes: " << f.number_of_edges(Features::OPEN) << " open edges, "
               << f.number_of_smooth_hole_rim_edges() << " hole rims left out, " << f.curves().size() << " curves\n";
+    // the teapot's rims (the spout's end, the body's rim under the lid) meet the fill of their
+    // opening at an angle: they stay features
+    Domain teapot("data/teapot.off");
+    Features t(teapot);
+    assert(t.number_of_smooth_hole_rim_edges() == 0 && t.number_of_edges(Features::OPEN) > 0);
+    std::cout << "  teapot: " << t.number_of_edges(Features::OPEN) << " open edges, no hole rim left out\n";
   }
   // fidelity of the staircase, both ways, against an independent brute-force distance
   {

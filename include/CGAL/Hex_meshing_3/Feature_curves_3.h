@@ -13,6 +13,7 @@
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
 #include <CGAL/Hex_meshing_3/internal/Min_union_find.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
 #include <array>
@@ -329,9 +330,16 @@ private:
       const V w = cross(sub(vec(m_points[a]), centre[root]), sub(vec(m_points[b]), centre[root]));
       for(std::size_t k = 0; k < 3; ++k) area[root][k] += w[k];
     }
-    // the loop's length whose faces lie within the feature angle of the closing surface
+    // the loop's length whose faces lie within the feature angle of the closing surface: the
+    // hole filled by CGAL's `triangulate_hole_polyline()` (the triangulation minimising its worst
+    // dihedral angle, the rim's faces counted), each edge's face against the fill's triangle on
+    // it; where there is no fill (a loop through a vertex twice, too long a loop, no triangulation
+    // found), the plane of the loop's vector area
+    std::vector<char> filled(rim.size(), 0);
+    fill_hole_rims(d, rim, open, uf, closed, cos_max, normal, edge_length, smooth_length, filled);
     for(std::size_t r = 0; r < rim.size(); ++r) {
       const std::size_t root = uf.find(r);
+      if(filled[root]) continue;
       if(std::abs(dot(unit(area[root]), normal[open[rim[r]].face])) > cos_max) smooth_length[root] += edge_length[r];
     }
     // a loop mostly smooth with its closing surface is a hole's rim: all of it goes (a rim in
@@ -348,6 +356,116 @@ private:
       Edge& ed = m_edges[open[rim[r]].edge];
       ed.kind = std::uint8_t(ed.kind & ~OPEN);
       if(ed.kind == 0) ++m_hole_rim_edges;
+    }
+  }
+
+  // The hole-rim test with the hole filled (see `mark_smooth_hole_rims()`): each closed chain of
+  // at most `max_fill` edges is split into simple loops (walking its edges as their faces run
+  // along them; where holes touch at a vertex, a walk that comes back to a vertex it passed
+  // closes a loop there), each loop is filled, and `smooth_length[root]` gets the length of the
+  // edges whose face meets the fill's triangle on the edge within the feature angle; `filled[root]`
+  // is set if every loop of the chain was filled.
+  template <typename Union_find>
+  void fill_hole_rims(const Surface_domain_3<GeomTraits>& d, const std::vector<std::size_t>& rim,
+                      const std::vector<Open_edge>& open, Union_find& uf, const std::vector<char>& closed,
+                      double cos_max, const std::vector<V>& normal, const std::vector<double>& edge_length,
+                      std::vector<double>& smooth_length, std::vector<char>& filled)
+  {
+    const auto& tris = d.triangle_indices();
+    const std::size_t max_fill = 400;   // (the search is cubic in a loop's length at worst)
+    std::vector<std::vector<std::size_t>> chain_edges(rim.size());
+    for(std::size_t r = 0; r < rim.size(); ++r) {
+      const std::size_t root = uf.find(r);
+      if(closed[root]) chain_edges[root].push_back(r);
+    }
+    // an edge's ends as its face runs along it: tail -> head
+    auto tail = [&](std::size_t r) { const Open_edge& oe = open[rim[r]]; const auto& e = m_edges[oe.edge].vertices; return oe.forward ? e[0] : e[1]; };
+    auto head = [&](std::size_t r) { const Open_edge& oe = open[rim[r]]; const auto& e = m_edges[oe.edge].vertices; return oe.forward ? e[1] : e[0]; };
+    std::vector<std::pair<Index, std::size_t>> from;   // (tail, edge), sorted
+    std::vector<char> used;
+    std::vector<std::size_t> walk, loop;
+    std::vector<std::pair<Index, std::size_t>> on_walk;   // (vertex, position in the walk)
+    std::vector<Point_3> points, third;
+    std::vector<CGAL::Triple<int, int, int>> triangles;
+    std::vector<int> apex;
+    // fills one loop (edges in order); false if no fill was found
+    auto fill = [&](const std::vector<std::size_t>& lp, double& smooth) {
+      points.clear();
+      third.clear();
+      for(std::size_t q : lp) {
+        points.push_back(m_points[tail(q)]);
+        Index o = 0;
+        for(Index w : tris[open[rim[q]].face]) if(w != tail(q) && w != head(q)) o = w;
+        third.push_back(m_points[o]);
+      }
+      triangles.clear();
+      namespace PMP = CGAL::Polygon_mesh_processing;
+      PMP::triangulate_hole_polyline(points, third, std::back_inserter(triangles),
+                                     CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
+                                       .do_not_use_cubic_algorithm(lp.size() > 100));
+      // per loop edge (k, k + 1), the third vertex of the fill's triangle on it
+      const int n = int(lp.size());
+      apex.assign(lp.size(), -1);
+      for(const auto& tr : triangles) {
+        const int ix[3] = {tr.first, tr.second, tr.third};
+        for(int i = 0; i < 3; ++i)
+          for(int j = 0; j < 3; ++j)
+            if(i != j && ix[j] == (ix[i] + 1) % n) apex[std::size_t(ix[i])] = ix[3 - i - j];
+      }
+      if(std::find(apex.begin(), apex.end(), -1) != apex.end()) return false;
+      for(int k = 0; k < n; ++k) {
+        const V a = vec(points[std::size_t(k)]), b = vec(points[std::size_t((k + 1) % n)]);
+        const V t = vec(points[std::size_t(apex[std::size_t(k)])]);
+        // the fill runs along the edge b -> a (consistently with the face, which runs a -> b)
+        const V nf = unit(cross(sub(a, b), sub(t, b)));
+        const std::size_t q = lp[std::size_t(k)];
+        if(dot(nf, normal[open[rim[q]].face]) > cos_max) smooth += edge_length[q];
+      }
+      return true;
+    };
+    for(std::size_t root = 0; root < rim.size(); ++root) {
+      const std::vector<std::size_t>& es = chain_edges[root];
+      if(es.size() < 3 || es.size() > max_fill) continue;
+      from.clear();
+      for(std::size_t r : es) from.push_back({tail(r), r});
+      std::sort(from.begin(), from.end());
+      used.assign(es.size(), 0);   // (indexed by position in `from`)
+      auto next_edge = [&](Index v) -> std::size_t {   // an unused edge leaving v (its position in `from`), or none
+        for(auto it = std::lower_bound(from.begin(), from.end(), std::make_pair(v, std::size_t(0)));
+            it != from.end() && it->first == v; ++it)
+          if(!used[std::size_t(it - from.begin())]) return std::size_t(it - from.begin());
+        return std::size_t(-1);
+      };
+      bool ok = true;
+      double smooth = 0;
+      for(std::size_t s0 = 0; s0 < from.size() && ok; ++s0) {
+        if(used[s0]) continue;
+        walk.clear();
+        on_walk.clear();
+        std::size_t e = s0;
+        on_walk.push_back({tail(from[e].second), 0});
+        while(true) {
+          used[e] = 1;
+          walk.push_back(from[e].second);
+          const Index h = head(from[e].second);
+          // back at a vertex of the walk: the edges since it form a loop
+          std::size_t at = std::size_t(-1);
+          for(const auto& ow : on_walk) if(ow.first == h) at = ow.second;
+          if(at != std::size_t(-1)) {
+            loop.assign(walk.begin() + std::ptrdiff_t(at), walk.end());
+            walk.resize(at);
+            while(!on_walk.empty() && on_walk.back().second > at) on_walk.pop_back();
+            if(loop.size() < 3 || !fill(loop, smooth)) { ok = false; break; }
+            if(walk.empty()) break;
+          } else on_walk.push_back({h, walk.size()});
+          e = next_edge(h);
+          if(e == std::size_t(-1)) { ok = !walk.empty() ? false : ok; break; }   // (inconsistent orientations)
+        }
+        if(!walk.empty()) ok = false;
+      }
+      if(!ok) continue;
+      filled[root] = 1;
+      smooth_length[root] = smooth;
     }
   }
 
