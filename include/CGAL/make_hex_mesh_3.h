@@ -168,6 +168,18 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *     \cgalParamType{`bool`}
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd
+ *   \cgalParamNBegin{capture_retry_cells}
+ *     \cgalParamDescription{where the capture leaves a cell whose scaled Jacobian is below 0.3, or a
+ *       cell concave for OpenFOAM or a face failing its tet decomposition (on the points an
+ *       OpenFOAM case gets), and the mesh has at most this many cells, the capture runs again from
+ *       the same grid with other ratios of the feature paths' turn penalty to snap weight (2.5,
+ *       3.75, 1.67 after the default 5) until one leaves none of these; the mesh with the fewest
+ *       such faults, then cells below 0.3, then the highest minimum is kept (deterministic; at
+ *       most four captures). 0: never. `Meshing_statistics::capture_tries` and `capture_choice` say
+ *       what was done}
+ *     \cgalParamType{`std::size_t`}
+ *     \cgalParamDefault{200,000}
+ *   \cgalParamNEnd
  *   \cgalParamNBegin{visitor}
  *     \cgalParamDescription{progress and cancellation hooks (model of `HexMeshingVisitor`)}
  *     \cgalParamType{a class, or `std::reference_wrapper` of one}
@@ -241,7 +253,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // the capture runs again from the same grid with other ratios in turn, until one leaves
     // neither, and the mesh with the fewest faults is kept: deterministic, at most four times the
     // capture's time, on such meshes only (the report gives `capture_tries` and `capture_choice`).
-    const std::size_t retry_cells = 200000;
+    const std::size_t retry_cells = choose_parameter(get_parameter(np, HNP::capture_retry_cells), std::size_t(200000));
     // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
     // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets),
     // cells below 0.3, the minimum scaled Jacobian (negated)
@@ -268,7 +280,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       }
       return std::make_tuple(concave + std::size_t(std::count(ft.begin(), ft.end(), char(1))), below, -worst);
     };
-    const bool may_retry = out.number_of_cells() <= retry_cells && copt.patch_iterations > 0;
+    const bool may_retry = out.number_of_cells() <= retry_cells && retry_cells > 0 && copt.patch_iterations > 0;
     std::unique_ptr<HexMesh> grid;
     if(may_retry) grid = std::make_unique<HexMesh>(out);
     const Hex_meshing_3::Meshing_statistics stats0 = stats;

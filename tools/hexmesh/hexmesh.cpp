@@ -212,6 +212,7 @@ int main(int argc, char** argv)
   int max_level = 12;
   std::size_t max_cells = 0;
   bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = false;
+  std::size_t capture_retry_cells = 200000;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
                                          "(repeatable)")->required();
@@ -259,6 +260,9 @@ int main(int argc, char** argv)
                                            "a warning says so)");
   app.add_flag("--feature-pillows", feature_pillows, "experimental: a sheet of hexahedra along each convex sharp curve whose "
                                                   "chain runs within half a cell of it, two boundary faces meeting at the curve");
+  app.add_option("--capture-retry-cells", capture_retry_cells, "where the boundary capture leaves a cell below a scaled "
+                 "Jacobian of 0.3 or a checkMesh -allGeometry fault, it runs again (at most 3 times) with other weights of "
+                 "the feature paths on meshes of at most this many cells, and the best mesh is kept; 0: never (default 200000)");
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-size", patch_size_rules, "REGEX=H[:HFINE]: cut cells meeting the input parts whose whole name "
@@ -483,12 +487,14 @@ int main(int argc, char** argv)
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
-                                                               .feature_pillows(feature_pillows).visitor(std::ref(progress)));
+                                                               .feature_pillows(feature_pillows)
+                                                               .capture_retry_cells(capture_retry_cells).visitor(std::ref(progress)));
     else
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
-                                                               .feature_pillows(feature_pillows).visitor(std::ref(progress)));
+                                                               .feature_pillows(feature_pillows)
+                                                               .capture_retry_cells(capture_retry_cells).visitor(std::ref(progress)));
     if(!quiet && !staircase)
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
                 << stats.buffer_cells << " buffer cells (" << stats.pillow_cells << " in feature pillows), " << stats.surface_vertices << " vertices on the surface ("
@@ -663,7 +669,7 @@ int main(int argc, char** argv)
       j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
                       {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
                       {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
-                      {"feature_pillows", feature_pillows},
+                      {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells},
                       {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},

@@ -26,6 +26,7 @@ enum body_fitted_t { body_fitted };
 enum feature_curves_t { feature_curves };
 enum feature_pillows_t { feature_pillows };
 enum polish_worst_cells_t { polish_worst_cells };
+enum capture_retry_cells_t { capture_retry_cells };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -69,6 +70,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::polish_worst_cells_t, Named_parameters>
   polish_worst_cells(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::capture_retry_cells_t, Named_parameters>
+  capture_retry_cells(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -114,6 +119,12 @@ Named_parameters<V, internal_np::feature_pillows_t> feature_pillows(const V& v) 
 /// `make_hex_mesh_3()`); on by default
 template <typename V>
 Named_parameters<V, internal_np::polish_worst_cells_t> polish_worst_cells(const V& v) { return { v }; }
+
+/// the capture runs again with other weights of the feature paths where it leaves a cell below
+/// 0.3 or a checkMesh fault, on meshes of at most this many cells (`std::size_t`; see
+/// `make_hex_mesh_3()`); 0: never; 200,000 by default
+template <typename V>
+Named_parameters<V, internal_np::capture_retry_cells_t> capture_retry_cells(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }
