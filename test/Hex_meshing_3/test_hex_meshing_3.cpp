@@ -777,6 +777,48 @@ void test_features()
     assert(f.number_of_smooth_hole_rim_edges() >= 0.95 * double(holes.input_summary().boundary_edges));
     std::cout << "  elephant-with-holes: " << f.number_of_edges(Features::OPEN) << " open edges, "
               << f.number_of_smooth_hole_rim_edges() << " hole rims left out, " << f.curves().size() << " curves\n";
+    // a window cut in the side of a closed cylinder (120 degrees of arc, 0.4 high): its rim is
+    // not planar, and the plane of its vector area meets the rim's faces beyond 30 degrees along
+    // 58% of its length (the arcs' ends and the vertical sides); the fill of the window follows
+    // the cylinder, so the rim is no feature. The rim of an open end (a cup) meets the fill (a
+    // flat disc) at 90 degrees: a feature.
+    auto cylinder = [](bool window, bool top) {
+      const int n = 36, rows = 10;   // 10 degrees, 0.1 high
+      std::vector<Point_3> p;
+      std::vector<std::array<std::uint32_t, 3>> t;
+      auto at = [&](int i, int k) { return std::uint32_t(k * n + (i % n)); };
+      for(int k = 0; k <= rows; ++k)
+        for(int i = 0; i < n; ++i) {
+          const double a = (i * 10.0 - 60.0) * CGAL_PI / 180.0;
+          p.push_back(Point_3(std::cos(a), std::sin(a), 0.1 * k));
+        }
+      for(int k = 0; k < rows; ++k)
+        for(int i = 0; i < n; ++i) {
+          if(window && i < 12 && k >= 3 && k < 7) continue;   // theta in [-60, 60], z in [0.3, 0.7]
+          t.push_back({{at(i, k), at(i + 1, k), at(i + 1, k + 1)}});
+          t.push_back({{at(i, k), at(i + 1, k + 1), at(i, k + 1)}});
+        }
+      const std::uint32_t b = std::uint32_t(p.size());
+      p.push_back(Point_3(0, 0, 0));
+      p.push_back(Point_3(0, 0, 0.1 * rows));
+      for(int i = 0; i < n; ++i) {
+        t.push_back({{b, at(i + 1, 0), at(i, 0)}});
+        if(top) t.push_back({{b + 1, at(i, rows), at(i + 1, rows)}});
+      }
+      return Domain(p, t);
+    };
+    {
+      Domain d = cylinder(true, true);
+      Features w(d);
+      assert(d.input_summary().boundary_edges == 32);
+      assert(w.number_of_smooth_hole_rim_edges() == 32 && w.number_of_edges(Features::OPEN) == 0);
+      assert(w.curves().size() == 2);   // the rims of the ends
+      Domain c = cylinder(false, false);
+      Features u(c);
+      assert(u.number_of_smooth_hole_rim_edges() == 0 && u.number_of_edges(Features::OPEN) == 36);
+      std::cout << "  cylinder with a window: its 32 rim edges left out, " << w.curves().size()
+                << " curves; cup: its 36 rim edges kept\n";
+    }
     // the teapot's rims (the spout's end, the body's rim under the lid) meet the fill of their
     // opening at an angle: they stay features
     Domain teapot("data/teapot.off");
