@@ -169,13 +169,15 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{capture_retry_cells}
- *     \cgalParamDescription{where the capture leaves a cell whose scaled Jacobian is below 0.3, or a
- *       cell concave for OpenFOAM or a face failing its tet decomposition (on the points an
- *       OpenFOAM case gets), and the mesh has at most this many cells, the capture runs again from
+ *     \cgalParamDescription{where the capture leaves a cell whose scaled Jacobian is below 0.3, the
+ *       mesh has at most this many cells and there are feature curves, the capture runs again from
  *       the same grid with other ratios of the feature paths' turn penalty to snap weight (2.5,
- *       3.75, 1.67 after the default 5) until one leaves none of these; the mesh with the fewest
- *       such faults, then cells below 0.3, then the highest minimum is kept (deterministic; at
- *       most four captures). 0: never. `Meshing_statistics::capture_tries` and `capture_choice` say
+ *       3.75, 1.67 after the default 5) until one leaves no cell below 0.3 and no fault that
+ *       checkMesh -allGeometry reports (cells concave for OpenFOAM, faces failing its tet
+ *       decomposition, on the points an OpenFOAM case gets); the mesh with the fewest such faults,
+ *       then cells below 0.3, then the highest minimum is kept (deterministic; at most four
+ *       captures; none with `polish_worst_cells(false)`). 0: never. A cancellation during a retry
+ *       keeps the best mesh so far. `Meshing_statistics::capture_tries` and `capture_choice` say
  *       what was done}
  *     \cgalParamType{`std::size_t`}
  *     \cgalParamDefault{200,000}
@@ -248,24 +250,19 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // Where curves are dense (dirty or detailed CAD), the worst cells depend on which paths these
     // weights pick, and no one setting suits every input: on the 15 test surfaces the default
     // leaves cells below a scaled Jacobian of 0.3 in 2 files, other ratios of the weights in 2 to
-    // 6 (fandisk falls to 0.03 at some). So where the first capture leaves a cell below 0.3 or a
-    // fault that checkMesh -allGeometry reports, and the mesh is small enough (`retry_cells`),
-    // the capture runs again from the same grid with other ratios in turn, until one leaves
-    // neither, and the mesh with the fewest faults is kept: deterministic, at most four times the
-    // capture's time, on such meshes only (the report gives `capture_tries` and `capture_choice`).
+    // 6 (fandisk falls to 0.03 at some). So where the first capture leaves a cell below 0.3, the
+    // mesh is small enough (`retry_cells`) and has feature curves, the capture runs again from the
+    // same grid with other ratios in turn, until one leaves neither a cell below 0.3 nor a fault
+    // that checkMesh -allGeometry reports, and the mesh with the fewest faults is kept:
+    // deterministic, at most four captures, on such meshes only (the report gives `capture_tries`
+    // and `capture_choice`). (Not with `polish_worst_cells(false)`: the retries look for the
+    // best polished mesh.)
     const std::size_t retry_cells = choose_parameter(get_parameter(np, HNP::capture_retry_cells), std::size_t(200000));
     // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
     // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets),
     // cells below 0.3, the minimum scaled Jacobian (negated)
-    auto faults = [](const HexMesh& mesh) {
-      Hex_meshing_3::Polyhedral_mesh_3 pm;
-      pm.build(mesh);
-      std::size_t concave = 0;
-      const auto x = Hex_meshing_3::IO::internal::foam_points(mesh, Hex_meshing_3::IO::default_hanging_bulge, &pm,
-                                                              Hex_meshing_3::IO::default_max_hanging_bulge, &concave);
-      Hex_meshing_3::OpenFOAM_geometry g;
-      g.compute_cells(x, pm);
-      const std::vector<char> ft = Hex_meshing_3::face_tet_errors(x, pm, g);
+    // (cells below 0.3 and the minimum: a NaN counts as -1)
+    auto low_cells = [](const HexMesh& mesh) {
       std::size_t below = 0;
       double worst = 1;
       for(std::size_t c = 0; c < mesh.hexahedra.size(); ++c) {
@@ -274,19 +271,33 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           const auto& p = mesh.points[mesh.hexahedra[c][std::size_t(k)]];
           y[k] = {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
         }
-        const double q = Hex_meshing_3::internal::hex_scaled_jacobian(y);
+        double q = Hex_meshing_3::internal::hex_scaled_jacobian(y);
+        if(!(q == q)) q = -1;
         if(q < 0.3) ++below;
         worst = (std::min)(worst, q);
       }
-      return std::make_tuple(concave + std::size_t(std::count(ft.begin(), ft.end(), char(1))), below, -worst);
+      return std::make_pair(below, worst);
     };
-    const bool may_retry = out.number_of_cells() <= retry_cells && retry_cells > 0 && copt.patch_iterations > 0;
+    auto faults = [&](const HexMesh& mesh) {
+      Hex_meshing_3::Polyhedral_mesh_3 pm;
+      pm.build(mesh);
+      std::size_t concave = 0;
+      const auto x = Hex_meshing_3::IO::internal::foam_points(mesh, Hex_meshing_3::IO::default_hanging_bulge, &pm,
+                                                              Hex_meshing_3::IO::default_max_hanging_bulge, &concave);
+      Hex_meshing_3::OpenFOAM_geometry g;
+      g.compute_cells(x, pm);
+      const std::vector<char> ft = Hex_meshing_3::face_tet_errors(x, pm, g);
+      const auto low = low_cells(mesh);
+      return std::make_tuple(concave + std::size_t(std::count(ft.begin(), ft.end(), char(1))), low.first, -low.second);
+    };
+    const bool may_retry = out.number_of_cells() <= retry_cells && retry_cells > 0 && copt.patch_iterations > 0 &&
+                           !features->curves().empty();
     std::unique_ptr<HexMesh> grid;
     if(may_retry) grid = std::make_unique<HexMesh>(out);
     const Hex_meshing_3::Meshing_statistics stats0 = stats;
     bool ran = Capture(out, domain, features, stats, copt).run(visitor);
     stats.capture_tries = 1;
-    if(ran && may_retry) {
+    if(ran && may_retry && low_cells(out).first > 0) {
       auto best = faults(out);
       // (the paths depend on the ratio of the two weights: 5 by default, then 2.5, 3.75, 1.67)
       const double turn_factor[4] = {1, 1, 0.75, 1}, snap_factor[4] = {1, 2, 1, 3};
@@ -298,7 +309,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         Hex_meshing_3::Meshing_statistics st = stats0;
         const bool ok = Capture(trial, domain, features, st, o).run(visitor);
         ++stats.capture_tries;
-        if(!ok) break;   // cancelled: the best so far stays
+        if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
         const auto f = faults(trial);
         if(f < best) {
           const std::size_t tries = stats.capture_tries;

@@ -18,6 +18,9 @@ Conventions:
 - patches 0 to 5 are the faces of the meshing box, named `xmin`, `xmax`, `ymin`, `ymax`, `zmin`,
   `zmax`; the parts of the surface (`HexMeshDomain_3::patch_names()`) follow.
 
+A model is copy constructible and move assignable: `CGAL::make_hex_mesh_3()` keeps a copy of the
+grid to run the boundary capture again (its named parameter `capture_retry_cells`).
+
 \cgalHasModelsBegin
 \cgalHasModels{`CGAL::Hex_meshing_3::Hex_mesh_3<GeomTraits>`}
 \cgalHasModelsEnd

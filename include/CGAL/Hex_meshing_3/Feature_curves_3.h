@@ -278,12 +278,13 @@ private:
   }
 
   // Hole rims: the open edges left (not along a seam, not of a two-sided sheet), grouped into
-  // connected chains; a closed one (every vertex on an even number of its edges) has the normal
-  // of the surface that would close it (its vector area as its faces run along it, about its
-  // centroid). A loop at least half of whose length has its faces within the feature angle of
-  // that surface (unsigned) is the rim of a hole in a smooth surface (elephant-with-holes): no
-  // feature, the capture closes it smoothly. Rims the closing surface meets at an angle (a
-  // spout's end, a body's rim under its lid: teapot) stay features.
+  // connected chains; a closed one (every vertex on an even number of its edges) bounds holes,
+  // which are filled (`fill_hole_rims()`). A chain at least half of whose length has its faces
+  // within the feature angle of the fill's triangles on its edges is the rim of a hole in a
+  // smooth surface (elephant-with-holes): no feature, the capture closes it smoothly. Rims the
+  // fill meets at an angle (a spout's end, a body's rim under its lid: teapot) stay features.
+  // A chain with no fill is compared with the plane of its vector area instead (as its faces
+  // run along it, about its centroid; unsigned).
   void mark_smooth_hole_rims(const Surface_domain_3<GeomTraits>& d, double cos_max, const std::vector<V>& normal,
                              const std::vector<Open_edge>& open)
   {
@@ -333,8 +334,8 @@ private:
     // the loop's length whose faces lie within the feature angle of the closing surface: the
     // hole filled by CGAL's `triangulate_hole_polyline()` (the triangulation minimising its worst
     // dihedral angle, the rim's faces counted), each edge's face against the fill's triangle on
-    // it; where there is no fill (a loop through a vertex twice, too long a loop, no triangulation
-    // found), the plane of the loop's vector area
+    // it; where there is no fill (a chain of more than 400 edges, inconsistent orientations, no
+    // triangulation found), the plane of the chain's vector area
     std::vector<char> filled(rim.size(), 0);
     fill_hole_rims(d, rim, open, uf, closed, cos_max, normal, edge_length, smooth_length, filled);
     for(std::size_t r = 0; r < rim.size(); ++r) {
@@ -394,8 +395,9 @@ private:
       third.clear();
       for(std::size_t q : lp) {
         points.push_back(m_points[tail(q)]);
-        Index o = 0;
+        Index o = Index(-1);
         for(Index w : tris[open[rim[q]].face]) if(w != tail(q) && w != head(q)) o = w;
+        CGAL_assertion(o != Index(-1));   // (the domain's triangles are not degenerate)
         third.push_back(m_points[o]);
       }
       triangles.clear();
