@@ -17,6 +17,7 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -258,26 +259,23 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // and `capture_choice`). (Not with `polish_worst_cells(false)`: the retries look for the
     // best polished mesh.)
     const std::size_t retry_cells = choose_parameter(get_parameter(np, HNP::capture_retry_cells), std::size_t(200000));
-    // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
-    // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets),
-    // cells below 0.3, the minimum scaled Jacobian (negated)
-    // (cells below 0.3 and the minimum: a NaN counts as -1)
+    // the cells below 0.3 and the minimum scaled Jacobian (a NaN counts as -1)
     auto low_cells = [](const HexMesh& mesh) {
       std::size_t below = 0;
       double worst = 1;
-      for(std::size_t c = 0; c < mesh.hexahedra.size(); ++c) {
-        Hex_meshing_3::internal::Vec3 y[8];
-        for(int k = 0; k < 8; ++k) {
-          const auto& p = mesh.points[mesh.hexahedra[c][std::size_t(k)]];
-          y[k] = {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-        }
-        double q = Hex_meshing_3::internal::hex_scaled_jacobian(y);
+      std::array<typename HexMesh::Point_3, 8> p;
+      for(const auto& c : mesh.hexahedra) {
+        for(std::size_t k = 0; k < 8; ++k) p[k] = mesh.points[c[k]];
+        double q = Hex_meshing_3::scaled_jacobian(p);
         if(!(q == q)) q = -1;
         if(q < 0.3) ++below;
         worst = (std::min)(worst, q);
       }
       return std::make_pair(below, worst);
     };
+    // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
+    // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets),
+    // cells below 0.3, the minimum scaled Jacobian (negated)
     auto faults = [&](const HexMesh& mesh) {
       Hex_meshing_3::Polyhedral_mesh_3 pm;
       pm.build(mesh);

@@ -461,9 +461,8 @@ private:
             if(walk.empty()) break;
           } else on_walk.push_back({h, walk.size()});
           e = next_edge(h);
-          if(e == std::size_t(-1)) { ok = !walk.empty() ? false : ok; break; }   // (inconsistent orientations)
+          if(e == std::size_t(-1)) { ok = walk.empty(); break; }   // (a dead end: inconsistent orientations)
         }
-        if(!walk.empty()) ok = false;
       }
       if(!ok) continue;
       filled[root] = 1;
