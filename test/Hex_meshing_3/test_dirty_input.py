@@ -165,8 +165,9 @@ LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
 # are judged against a fill of the hole: every file meets the goal)
 MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
              "elephant-with-holes", "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part", "teapot"}
-# the files whose first capture left cells below 0.3 at those sizes (the others are captured once)
-CAPTURE_RETRIED = {"elephant-with-holes", "teapot"}
+# the files whose first capture left cells below 0.3 or a cell concave for OpenFOAM at those sizes
+# (the others are captured once; t20_part's first capture: 0.303 and one concave cell)
+CAPTURE_RETRIED = {"elephant-with-holes", "teapot", "t20_part"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -782,15 +783,22 @@ def main():
         retried = stem in CAPTURE_RETRIED
         check(b_["capture_choice"] < b_["capture_tries"] and (b_["capture_tries"] > 1) == retried,
               f"{stem}: {b_['capture_tries']} capture(s) run (more than one: {retried}), setting {b_['capture_choice']} kept")
-        if stem == "teapot":   # without the retries: one capture, the default weights, no better
+        if stem in ("teapot", "t20_part"):   # without the retries: one capture, the default weights, no better
             rep0 = os.path.join(W, "bf_" + stem + "_once.json")
             hexmesh(ctx, [os.path.join(D, name)], [os.path.join(W, "bf_" + stem + "_once.vtu")],
                     ["-q", "--capture-retry-cells", "0"] + BODY_FITTED_SIZES.get(stem, []), rep0, body_fitted=True)
             j0 = json.load(open(rep0))
             sj0 = j0["quality"]["scaled_jacobian"]["min"]
-            check(j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0 and sj0 < 0.3 <= sj,
-                  f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f} "
-                  f"(< 0.3; {sj:.3f} with the retries)")
+            once = j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0
+            if stem == "teapot":   # a cell below 0.3 starts the retries
+                check(once and sj0 < 0.3 <= sj,
+                      f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f} "
+                      f"(< 0.3; {sj:.3f} with the retries)")
+            else:   # a concave cell does too, with every cell above 0.3
+                c0, c1 = j0["quality"]["concave_cells"], q["concave_cells"]
+                check(once and sj0 >= 0.3 and c0 > 0 and c1 == 0,
+                      f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f}, "
+                      f"{c0} concave cell(s) (> 0; {c1} with the retries)")
         if stem in MIN_SJ_FLOOR:
             check(sj >= MIN_SJ_FLOOR[stem], f"{stem}: min scaled Jacobian {sj:.3g} >= {MIN_SJ_FLOOR[stem]} (no regression; the goal is 0.3)")
         if stem in NON_ORTHO_65:
