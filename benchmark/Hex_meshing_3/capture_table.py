@@ -8,9 +8,21 @@ and 1 surface size from the input and the farthest (x surface size), the input's
 point from the mesh, the feature fidelity both ways and the worst corner (x surface size), feature
 curves missed, buffer cells removed, vertices that could not reach the surface, total seconds.
 
-Usage: benchmark/Hex_meshing_3/capture_table.py [--hexmesh PATH] [--keep DIR] [-- hexmesh options...]
+With --test-sizes, each file also gets the options the tests give it (BODY_FITTED_SIZES in
+test/Hex_meshing_3/test_dirty_input.py, read from there); with --size-factor F, its surface size is
+F times the default (the largest side of the input's bounding box / 40), e.g. 0.75: one more
+refinement level where it binds. The test sizes are no margin: this shows how the capture's figures
+hold at other sizes. The table then also gives the cells OpenFOAM finds concave and the faces
+failing its tet decomposition (the report's counts of checkMesh -allGeometry's), the captures run,
+and a last line with the number of files reaching the goals (min scaled Jacobian >= 0.3, no
+concave cell, no face-tet failure).
+
+Usage: benchmark/Hex_meshing_3/capture_table.py [--hexmesh PATH] [--keep DIR] [--test-sizes]
+                                                [--size-factor F] [-- hexmesh options...]
 e.g.   benchmark/Hex_meshing_3/capture_table.py -- --thin-cells 5
+       benchmark/Hex_meshing_3/capture_table.py --test-sizes --size-factor 0.75
 """
+import ast
 import argparse
 import concurrent.futures
 import json
@@ -22,6 +34,29 @@ import tempfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 DATA = os.path.join(ROOT, "test", "Hex_meshing_3", "data")
+TEST = os.path.join(ROOT, "test", "Hex_meshing_3", "test_dirty_input.py")
+
+
+def test_sizes():
+    """BODY_FITTED_SIZES of the tests (file stem -> extra hexmesh options), read from the test's
+    source: its module-level assignments to THIN and BODY_FITTED_SIZES"""
+    ns = {}
+    for node in ast.parse(open(TEST).read()).body:
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
+                and node.targets[0].id in ("THIN", "BODY_FITTED_SIZES"):
+            ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), {}, dict(ns))
+    return ns.get("BODY_FITTED_SIZES", {})
+
+
+def default_surface_size(off):
+    """hexmesh's default surface size for an OFF file: the largest side of its bounding box / 40"""
+    with open(off) as f:
+        tok = f.read().split()
+    i = 1 if tok[0] == "OFF" else 0
+    nv = int(tok[i])
+    i += 3
+    xyz = [float(t) for t in tok[i:i + 3 * nv]]
+    return max(max(xyz[a::3]) - min(xyz[a::3]) for a in range(3)) / 40
 
 
 def main():
@@ -30,23 +65,36 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--hexmesh", default=os.path.join(ROOT, "build", "tools", "hexmesh", "hexmesh"))
     ap.add_argument("--keep", help="directory for the meshes and reports (default: a temporary one)")
+    ap.add_argument("--test-sizes", action="store_true", help="each file with the options of the tests")
+    ap.add_argument("--size-factor", type=float, help="surface size = this x the default")
     args = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
+    per_file = test_sizes() if args.test_sizes else {}
     work = args.keep or tempfile.mkdtemp(prefix="capture_table_")
     os.makedirs(work, exist_ok=True)
 
     def one(name):
         stem = name[:-4]
         rep = os.path.join(work, stem + ".json")
+        opts = list(per_file.get(stem, []))
+        if args.size_factor:
+            opts += ["--surface-size", repr(args.size_factor * default_surface_size(os.path.join(DATA, name)))]
         r = subprocess.run([args.hexmesh, os.path.join(DATA, name), "-o", os.path.join(work, stem + ".vtu"),
-                            "--report", rep, "--force", "-q"] + extra, capture_output=True, text=True)
+                            "--report", rep, "--force", "-q"] + opts + extra, capture_output=True, text=True)
         return stem, (json.load(open(rep)) if r.returncode == 0 else None), r.stderr[-300:]
 
     names = sorted(n for n in os.listdir(DATA) if n.endswith(".off"))
     with concurrent.futures.ThreadPoolExecutor(2) as ex:
         results = list(ex.map(one, names))
-    print(f"hexmesh options: {' '.join(extra) or '(defaults)'}; distances in surface sizes")
+    head = "hexmesh options: " + (" ".join(extra) or "(defaults)")
+    if args.test_sizes:
+        head += "; the tests' per-file options"
+    if args.size_factor:
+        head += "; surface size %g x the default" % args.size_factor
+    print(head + "; distances in surface sizes")
     print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
-          f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} {'sec':>5s}")
+          f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
+          f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}")
+    goals = 0
     for stem, j, err in results:
         if j is None:
             print(f"{stem:20s} FAILED: {err.strip()}")
@@ -59,7 +107,10 @@ def main():
               f"{fi['faces_beyond_half_surface_size']:4d} {fi['faces_beyond_surface_size']:4d} {fi['mesh_to_input_max'] / s:5.2f} "
               f"{fi['input_to_mesh_max'] / s:5.2f} {rel(ff['input_to_mesh']):6.2f} {rel(ff['mesh_to_input']):6.2f} "
               f"{rel(ff['max_corner_distance']):5.2f} {b.get('curves_missed', -1):4d} {b.get('removed_buffer_cells', -1):4d} "
-              f"{b.get('unreached_vertices', -1):4d} {j['seconds']['total']:5.2f}")
+              f"{b.get('unreached_vertices', -1):4d} {q['concave_cells']:4d} {q['face_tet_errors']:4d} "
+              f"{b.get('capture_tries', 0):4d} {j['seconds']['total']:5.2f}")
+        goals += q["scaled_jacobian"]["min"] >= 0.3 and q["concave_cells"] == 0 and q["face_tet_errors"] == 0
+    print(f"min scaled Jacobian >= 0.3, no concave cell and no face-tet failure: {goals} of {len(results)} files")
 
 
 if __name__ == "__main__":
