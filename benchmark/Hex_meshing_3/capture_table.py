@@ -44,15 +44,19 @@ def test_sizes():
     for node in ast.parse(open(TEST).read()).body:
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
                 and node.targets[0].id in ("THIN", "BODY_FITTED_SIZES"):
-            ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), {}, dict(ns))
-    return ns.get("BODY_FITTED_SIZES", {})
+            ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), dict(ns))
+    if "BODY_FITTED_SIZES" not in ns:
+        sys.exit(f"capture_table.py: no BODY_FITTED_SIZES assignment found in {TEST}")
+    return ns["BODY_FITTED_SIZES"]
 
 
 def default_surface_size(off):
     """hexmesh's default surface size for an OFF file: the largest side of its bounding box / 40"""
     with open(off) as f:
-        tok = f.read().split()
-    i = 1 if tok[0] == "OFF" else 0
+        tok = " ".join(line.split("#")[0] for line in f).split()
+    if tok[0] != "OFF":
+        sys.exit(f"capture_table.py: {off}: not a plain OFF file")
+    i = 1
     nv = int(tok[i])
     i += 3
     xyz = [float(t) for t in tok[i:i + 3 * nv]]
@@ -69,6 +73,10 @@ def main():
     ap.add_argument("--size-factor", type=float, help="surface size = this x the default")
     args = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
     per_file = test_sizes() if args.test_sizes else {}
+    if args.size_factor is not None and (args.size_factor <= 0 or "--surface-size" in extra or "--size" in extra):
+        sys.exit("capture_table.py: --size-factor needs a positive factor and no --surface-size or --size after --")
+    if args.test_sizes and any(o in extra for v in per_file.values() for o in v if o.startswith("--")):
+        sys.exit("capture_table.py: --test-sizes already gives " + " ".join(sorted({o for v in per_file.values() for o in v if o.startswith("--")})))
     work = args.keep or tempfile.mkdtemp(prefix="capture_table_")
     os.makedirs(work, exist_ok=True)
 
@@ -76,7 +84,7 @@ def main():
         stem = name[:-4]
         rep = os.path.join(work, stem + ".json")
         opts = list(per_file.get(stem, []))
-        if args.size_factor:
+        if args.size_factor is not None:
             opts += ["--surface-size", repr(args.size_factor * default_surface_size(os.path.join(DATA, name)))]
         r = subprocess.run([args.hexmesh, os.path.join(DATA, name), "-o", os.path.join(work, stem + ".vtu"),
                             "--report", rep, "--force", "-q"] + opts + extra, capture_output=True, text=True)
@@ -88,7 +96,7 @@ def main():
     head = "hexmesh options: " + (" ".join(extra) or "(defaults)")
     if args.test_sizes:
         head += "; the tests' per-file options"
-    if args.size_factor:
+    if args.size_factor is not None:
         head += "; surface size %g x the default" % args.size_factor
     print(head + "; distances in surface sizes")
     print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
@@ -107,9 +115,9 @@ def main():
               f"{fi['faces_beyond_half_surface_size']:4d} {fi['faces_beyond_surface_size']:4d} {fi['mesh_to_input_max'] / s:5.2f} "
               f"{fi['input_to_mesh_max'] / s:5.2f} {rel(ff['input_to_mesh']):6.2f} {rel(ff['mesh_to_input']):6.2f} "
               f"{rel(ff['max_corner_distance']):5.2f} {b.get('curves_missed', -1):4d} {b.get('removed_buffer_cells', -1):4d} "
-              f"{b.get('unreached_vertices', -1):4d} {q['concave_cells']:4d} {q['face_tet_errors']:4d} "
+              f"{b.get('unreached_vertices', -1):4d} {q.get('concave_cells', -1):4d} {q.get('face_tet_errors', -1):4d} "
               f"{b.get('capture_tries', 0):4d} {j['seconds']['total']:5.2f}")
-        goals += q["scaled_jacobian"]["min"] >= 0.3 and q["concave_cells"] == 0 and q["face_tet_errors"] == 0
+        goals += q["scaled_jacobian"]["min"] >= 0.3 and q.get("concave_cells") == 0 and q.get("face_tet_errors") == 0
     print(f"min scaled Jacobian >= 0.3, no concave cell and no face-tet failure: {goals} of {len(results)} files")
 
 

@@ -170,9 +170,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{capture_retry_cells}
- *     \cgalParamDescription{where the capture leaves a cell whose scaled Jacobian is below 0.3 or a
- *       fault that checkMesh -allGeometry reports, the mesh has at most this many cells and there
- *       are feature curves, the capture runs again from
+ *     \cgalParamDescription{where the capture leaves a cell whose scaled Jacobian is below 0.3, a
+ *       cell concave for OpenFOAM or a face failing its tet decomposition, the mesh has at most
+ *       this many cells and there are feature curves, the capture runs again from
  *       the same grid with other ratios of the feature paths' turn penalty to snap weight (2.5,
  *       3.75, 1.67 after the default 5) until one leaves no cell below 0.3 and no fault that
  *       checkMesh -allGeometry reports (cells concave for OpenFOAM, faces failing its tet
@@ -253,7 +253,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // weights pick, and no one setting suits every input: on the 15 test surfaces the default
     // leaves cells below a scaled Jacobian of 0.3 in 2 files, other ratios of the weights in 2 to
     // 6 (fandisk falls to 0.03 at some). So where the first capture leaves a cell below 0.3 or a
-    // fault (below), the mesh is small enough (`retry_cells`) and has feature curves, the capture
+    // fault (concave cells, face-tet failures: below), the mesh is small enough (`retry_cells`) and has feature curves, the capture
     // runs again from the same grid with other ratios in turn, until one leaves neither a cell
     // below 0.3 nor a fault that checkMesh -allGeometry reports, and the mesh with the fewest
     // faults is kept (the faults of the first capture are measured on every such mesh):

@@ -166,8 +166,9 @@ LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
 MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
              "elephant-with-holes", "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part", "teapot"}
 # the files whose first capture left cells below 0.3 or a cell concave for OpenFOAM at those sizes
-# (the others are captured once; t20_part's first capture: 0.303 and one concave cell)
-CAPTURE_RETRIED = {"elephant-with-holes", "teapot", "t20_part"}
+# (the others are captured once; t20_part's first capture: 0.303 and one concave cell;
+# elephant-with-holes' first capture reaches 0.315 since the corner rule of the feature chains)
+CAPTURE_RETRIED = {"teapot", "t20_part"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -794,9 +795,9 @@ def main():
                 check(once and sj0 < 0.3 <= sj,
                       f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f} "
                       f"(< 0.3; {sj:.3f} with the retries)")
-            else:   # a concave cell does too, with every cell above 0.3
+            else:   # a concave cell does too (its first capture has every cell above 0.3)
                 c0, c1 = j0["quality"]["concave_cells"], q["concave_cells"]
-                check(once and sj0 >= 0.3 and c0 > 0 and c1 == 0,
+                check(once and c0 > 0 and c1 == 0,
                       f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f}, "
                       f"{c0} concave cell(s) (> 0; {c1} with the retries)")
         if stem in MIN_SJ_FLOOR:

@@ -261,7 +261,7 @@ int main(int argc, char** argv)
   app.add_flag("--feature-pillows", feature_pillows, "experimental: a sheet of hexahedra along each convex sharp curve whose "
                                                   "chain runs within half a cell of it, two boundary faces meeting at the curve");
   app.add_option("--capture-retry-cells", capture_retry_cells, "where the boundary capture leaves a cell below a scaled "
-                 "Jacobian of 0.3 or a checkMesh -allGeometry fault, it runs again (at most 3 times) with other weights of the feature paths on meshes of at "
+                 "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 3 times) with other weights of the feature paths on meshes of at "
                  "most this many cells, and the mesh with the fewest checkMesh -allGeometry faults, then cells below 0.3 is "
                  "kept; 0: never (default 200000)");
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");

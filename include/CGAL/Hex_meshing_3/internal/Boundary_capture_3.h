@@ -1182,15 +1182,19 @@ private:
           break;
         }
     }
-    // a corner with its two chain edges in one top face at more than 135 degrees: the face has
-    // three corners along the curves and is flat there (where two curves or two pieces of a chain
-    // meet at the corner, which the turn test above does not see). The corner stays; its curve
-    // neighbours in that face go back to the surface (turns: the curves cross the face)
-    for(std::size_t f : top_faces) {
+    // a corner with its two chain edges in one top face at more than 135 degrees, both ends
+    // snapped: the face has three corners along the curves and is flat there (where two curves or
+    // two pieces of a chain meet at the corner, which the turn test above does not see). The
+    // corner stays; its curve neighbours in that face go back to the surface (turns: the curves
+    // cross the face). (Not with pillows: a pillowed chain's corner cell has such faces.)
+    const bool any_pillow = std::find(pillow.begin(), pillow.end(), 1) != pillow.end();
+    for(std::size_t i = 0; i < (any_pillow ? 0 : top_faces.size()); ++i) {
+      const std::size_t f = top_faces[i];
       const auto& q = m.boundary_faces[f].vertices;
       for(int k = 0; k < 4; ++k) {
         const Index v = q[std::size_t(k)], a = q[std::size_t((k + 1) % 4)], b = q[std::size_t((k + 3) % 4)];
-        if(kind[v] != CORNER || !feature_edges.count(capture_edge_key(v, a)) || !feature_edges.count(capture_edge_key(v, b)))
+        if(kind[v] != CORNER || !snapped(a) || !snapped(b) || !feature_edges.count(capture_edge_key(v, a)) ||
+           !feature_edges.count(capture_edge_key(v, b)))
           continue;
         const Vec3 da = sub(P[a], P[v]), db = sub(P[b], P[v]);
         const double l = norm(da) * norm(db);
