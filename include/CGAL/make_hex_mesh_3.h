@@ -253,10 +253,11 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // weights pick, and no one setting suits every input: on the 15 test surfaces the default
     // leaves cells below a scaled Jacobian of 0.3 in 2 files, other ratios of the weights in 2 to
     // 6 (fandisk falls to 0.03 at some). So where the first capture leaves a cell below 0.3 or a
-    // fault (concave cells, face-tet failures: below), the mesh is small enough (`retry_cells`) and has feature curves, the capture
-    // runs again from the same grid with other ratios in turn, until one leaves neither a cell
-    // below 0.3 nor a fault that checkMesh -allGeometry reports, and the mesh with the fewest
-    // faults is kept (the faults of the first capture are measured on every such mesh):
+    // fault that checkMesh -allGeometry reports (a concave cell, a face failing the tet
+    // decomposition: `faults` below), the mesh is small enough (`retry_cells`) and has feature
+    // curves, the capture runs again from the same grid with other ratios in turn, until one
+    // leaves neither, and the mesh with the fewest faults is kept (the first capture's faults are
+    // measured on every such mesh):
     // deterministic, at most four captures, on such meshes only (the report gives `capture_tries`
     // and `capture_choice`). (Not with `polish_worst_cells(false)`: the retries look for the
     // best polished mesh.)

@@ -121,7 +121,8 @@ template <typename V>
 Named_parameters<V, internal_np::polish_worst_cells_t> polish_worst_cells(const V& v) { return { v }; }
 
 /// the capture runs again with other weights of the feature paths where it leaves a cell below
-/// 0.3, on meshes of at most this many cells (`std::size_t`; see `make_hex_mesh_3()`); 0: never;
+/// 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, on meshes of at most
+/// this many cells (`std::size_t`; see `make_hex_mesh_3()`); 0: never;
 /// 200,000 by default
 template <typename V>
 Named_parameters<V, internal_np::capture_retry_cells_t> capture_retry_cells(const V& v) { return { v }; }

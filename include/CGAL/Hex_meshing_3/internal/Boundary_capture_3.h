@@ -1188,8 +1188,7 @@ private:
     // corner stays; its curve neighbours in that face go back to the surface (turns: the curves
     // cross the face). (Not with pillows: a pillowed chain's corner cell has such faces.)
     const bool any_pillow = std::find(pillow.begin(), pillow.end(), 1) != pillow.end();
-    for(std::size_t i = 0; i < (any_pillow ? 0 : top_faces.size()); ++i) {
-      const std::size_t f = top_faces[i];
+    if(!any_pillow) for(std::size_t f : top_faces) {
       const auto& q = m.boundary_faces[f].vertices;
       for(int k = 0; k < 4; ++k) {
         const Index v = q[std::size_t(k)], a = q[std::size_t((k + 1) % 4)], b = q[std::size_t((k + 3) % 4)];
