@@ -87,6 +87,10 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   into positive tetrahedra with both cell centres (OpenFOAM's "face tets") are moved until
  *   they can, where their scaled Jacobian and non-orthogonality allow. Every cell of the result
  *   has a positive scaled Jacobian.
+ * - after the polish, the corners of the outer faces whose centre stands more than 0.2 local sizes off the
+ *   surface (a chain turning inside a face, a stretched face over a convex region) slide on their
+ *   surface or curve to bring the centre closer, as far as the polish's guards allow (no cell
+ *   below min(its quality, 0.35)); `Meshing_statistics::fidelity_moves` counts the moves.
  *
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)

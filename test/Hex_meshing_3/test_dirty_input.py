@@ -146,6 +146,11 @@ NO_FACE_BEYOND_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cylinder", "
                                "fandisk_crack", "fin_slot", "rotor", "t20_part"}
 NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight",
                                     "fin_slot", "t20_part"}
+# the issue's fidelity goal, every boundary face within 0.25 x surface size of the input (cylinder
+# and eight since the fidelity polish slides the corners of faces standing off the surface: their
+# farthest went from 0.28 and 0.30 to 0.20 and 0.21; it makes moves on both)
+NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"cube", "cylinder", "eight", "fin_slot"}
+FIDELITY_MOVES = {"cylinder", "eight"}
 # some of the files where the polish's joint moves let curve or corner vertices off their feature
 # (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
 LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
@@ -860,6 +865,12 @@ def main():
             check(fi["faces_beyond_surface_size"] == 0,
                   f"{stem}: no boundary face farther than the surface size from the input (farthest "
                   f"{fi['mesh_to_input_max'] / s_:.2f} x)")
+        if stem in NO_FACE_BEYOND_QUARTER_SURFACE_SIZE:
+            check(fi["faces_beyond_quarter_surface_size"] == 0,
+                  f"{stem}: no boundary face farther than a quarter of the surface size from the input (farthest "
+                  f"{fi['mesh_to_input_max'] / s_:.2f} x)")
+        if stem in FIDELITY_MOVES:
+            check(j["boundary"]["fidelity_moves"] > 0, f"{stem}: the fidelity polish moved vertices ({j['boundary']['fidelity_moves']})")
         if stem in NO_FACE_BEYOND_HALF_SURFACE_SIZE:
             check(fi["faces_beyond_half_surface_size"] == 0,
                   f"{stem}: no boundary face farther than half the surface size from the input (farthest "

@@ -444,6 +444,8 @@ public:
     double loosen_curve = 0.2;              ///< the patch around a cell below `patch_floor` with curve vertices is tried first with them free to leave their curve by at most this (x local size; 0: never)
     double loosen_corner = 0.1;             ///< ... and with its corner vertices free to leave their corner's point by at most this (x local size; 0: never)
     double second_polish_pyramid_weight = 2;   ///< the second polish counts the face pyramids at this many times their value (1: no second polish)
+    int fidelity_passes = 3;                ///< sweeps of `fidelity_polish()` (0: none)
+    double fidelity_distance = 0.2;         ///< ... over the top faces whose centre is farther than this (x the smallest local size of their corners) from the surface
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -511,6 +513,7 @@ public:
       if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
       second_polish = false;
     }
+    if(!cancelled) fidelity_polish();
     lap("polish");
     assign_patches();
     release_work_data();
@@ -2320,6 +2323,104 @@ private:
     for(Index v : turn_vertices) rep.curve_turns.push_back(P[v]);
   }
 
+
+  // The faces of the buffer's outer surface whose centre stands off the surface (where a feature
+  // chain turns inside a face, or a stretched face bends over a convex region) have their corners
+  // slid on their surface or curve to bring the centre closer: each surface or curve vertex of
+  // such a face takes the first step down the (numerical) gradient of the largest centre distance
+  // of its top faces (relative to their local sizes) that lowers it by 2 % and passes the
+  // polish's guards: no cell below min(its quality, polish_quality), nor its scaled Jacobian, no
+  // face split worse than min(its own, min_face_split_quality), no cell made concave, the
+  // non-orthogonality not above max(its value, max_non_orthogonality). Fidelity before quality,
+  // but within the quality goals.
+  void fidelity_polish()
+  {
+    if(opt.fidelity_passes <= 0 || top_faces.empty()) return;
+    auto centre_distance = [&](std::size_t f) {
+      const auto& q = m.boundary_faces[top_faces[f]].vertices;
+      Vec3 c{{0, 0, 0}};
+      double h = 1e300;
+      for(Index w : q) { c = add(c, P[w]); h = (std::min)(h, local_size(w)); }
+      c = mul(c, 0.25);
+      double dist = CGAL::to_double(d.squared_distance(Point_3(c[0], c[1], c[2])));
+      // a hanging node of the face is where its masters put it (on the face's edge, not on the surface)
+      for(Index w : q)
+        if(kind[w] == HANGING) dist = (std::max)(dist, CGAL::to_double(d.squared_distance(Point_3(P[w][0], P[w][1], P[w][2]))));
+      return std::sqrt(dist) / h;
+    };
+    auto skip_face = [&](std::size_t f) {
+      for(Index w : m.boundary_faces[top_faces[f]].vertices) if(kind[w] == CAP || kind[w] == RELEASED) return true;
+      return false;
+    };
+    auto objective = [&](Index v) {
+      double worst = 0;
+      for(std::size_t f : vertex_top_faces[v]) if(!skip_face(f)) worst = (std::max)(worst, centre_distance(f));
+      return worst;
+    };
+    const bool polish_before = use_polish;
+    const double keep_before = opt.keep_quality;
+    const double fq = opt.polish_quality;
+    use_polish = true;
+    std::vector<Index> cells;
+    std::vector<double> q0, sj0, split0;
+    std::vector<char> conc0;
+    for(int pass = 0; pass < opt.fidelity_passes && !cancelled; ++pass) {
+      std::vector<Index> work;
+      for(std::size_t f = 0; f < top_faces.size(); ++f)
+        if(!skip_face(f) && centre_distance(f) > opt.fidelity_distance)
+          for(Index w : m.boundary_faces[top_faces[f]].vertices)
+            if((kind[w] == SURFACE || kind[w] == CURVE) && w < vertex_top_faces.size()) work.push_back(w);
+      std::sort(work.begin(), work.end());
+      work.erase(std::unique(work.begin(), work.end()), work.end());
+      if(work.empty()) break;
+      std::size_t moved = 0;
+      for(Index v : work) {
+        const Vec3 x0 = P[v];
+        const double D0 = objective(v);
+        if(D0 <= opt.fidelity_distance) continue;
+        const double h = local_size(v);
+        const double eps = 1e-3 * h;
+        Vec3 g{{0, 0, 0}};
+        for(int a = 0; a < 3; ++a) {
+          Vec3 y = x0; y[a] += eps;
+          move(v, constrain(v, y));
+          const double Dp = objective(v);
+          y = x0; y[a] -= eps;
+          move(v, constrain(v, y));
+          g[a] = (Dp - objective(v)) / (2 * eps);
+        }
+        move(v, x0);
+        const double gn = norm(g);
+        if(!(gn > 0)) continue;
+        affected_cells(v, cells);
+        q0.resize(cells.size()); sj0.resize(cells.size()); split0.resize(cells.size()); conc0.resize(cells.size());
+        for(std::size_t i = 0; i < cells.size(); ++i) {
+          q0[i] = cell_quality(cells[i]); sj0[i] = cell_sj(cells[i]); split0[i] = cell_split(cells[i]); conc0[i] = cell_concave(cells[i]);
+        }
+        const double nonortho_cap = (std::max)(opt.max_non_orthogonality, max_non_orthogonality(cells));
+        bool done = false;
+        for(double alpha : {0.4, 0.2, 0.1, 0.05}) {
+          const Vec3 x = constrain(v, sub(x0, mul(g, alpha * h / gn)));
+          move(v, x);
+          if(!(objective(v) < D0 * 0.98)) continue;
+          bool ok = true;
+          for(std::size_t i = 0; i < cells.size() && ok; ++i) {
+            const Index c = cells[i];
+            const double floor = (std::min)(q0[i], fq);
+            ok = cell_quality_above(c, floor) >= floor && cell_sj(c) >= (std::min)(sj0[i], fq) &&
+                 cell_split(c) >= (std::min)(split0[i], opt.min_face_split_quality) && (conc0[i] || !cell_concave(c));
+          }
+          if(ok && max_non_orthogonality(cells) > nonortho_cap) ok = false;
+          if(ok) { done = true; break; }
+        }
+        if(done) ++moved; else move(v, x0);
+      }
+      rep.fidelity_moves += moved;
+      if(moved == 0) break;
+    }
+    use_polish = polish_before;
+    opt.keep_quality = keep_before;
+  }
 
   // OpenFOAM's "face tets" (checkMesh -allGeometry) fail at a face none of whose diagonal splits
   // gives positive tetrahedra with the cell centres on both sides: a folded face of a cell the
