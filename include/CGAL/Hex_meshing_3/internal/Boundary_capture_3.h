@@ -513,7 +513,7 @@ public:
       if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
       second_polish = false;
     }
-    if(!cancelled) fidelity_polish();
+    if(!cancelled) fidelity_polish(visitor);
     lap("polish");
     assign_patches();
     release_work_data();
@@ -2333,7 +2333,8 @@ private:
   // face split worse than min(its own, min_face_split_quality), no cell made concave, the
   // non-orthogonality not above max(its value, max_non_orthogonality). Fidelity before quality,
   // but within the quality goals.
-  void fidelity_polish()
+  template <typename Visitor>
+  void fidelity_polish(Visitor& visitor)
   {
     if(opt.fidelity_passes <= 0 || top_faces.empty()) return;
     auto centre_distance = [&](std::size_t f) {
@@ -2352,13 +2353,16 @@ private:
       for(Index w : m.boundary_faces[top_faces[f]].vertices) if(kind[w] == CAP || kind[w] == RELEASED) return true;
       return false;
     };
+    // over the vertex's top faces and those of the hanging nodes that follow it
     auto objective = [&](Index v) {
       double worst = 0;
       for(std::size_t f : vertex_top_faces[v]) if(!skip_face(f)) worst = (std::max)(worst, centre_distance(f));
+      for(Index h : deps[v])
+        if(h < vertex_top_faces.size())
+          for(std::size_t f : vertex_top_faces[h]) if(!skip_face(f)) worst = (std::max)(worst, centre_distance(f));
       return worst;
     };
     const bool polish_before = use_polish;
-    const double keep_before = opt.keep_quality;
     const double fq = opt.polish_quality;
     use_polish = true;
     std::vector<Index> cells;
@@ -2369,12 +2373,17 @@ private:
       for(std::size_t f = 0; f < top_faces.size(); ++f)
         if(!skip_face(f) && centre_distance(f) > opt.fidelity_distance)
           for(Index w : m.boundary_faces[top_faces[f]].vertices)
-            if((kind[w] == SURFACE || kind[w] == CURVE) && w < vertex_top_faces.size()) work.push_back(w);
+            if((kind[w] == SURFACE || kind[w] == CURVE) && !(w < left_feature.size() && left_feature[w])) work.push_back(w);
+            else if(kind[w] == HANGING)   // its masters move it
+              for(const auto& hm : hang_masters[hang_of[w]])
+                if((kind[hm.first] == SURFACE || kind[hm.first] == CURVE) && !(hm.first < left_feature.size() && left_feature[hm.first]))
+                  work.push_back(hm.first);
       std::sort(work.begin(), work.end());
       work.erase(std::unique(work.begin(), work.end()), work.end());
       if(work.empty()) break;
-      std::size_t moved = 0;
+      std::size_t moved = 0, tried = 0;
       for(Index v : work) {
+        if(++tried % 64 == 0 && !visitor.go_further(1.0)) { cancelled = true; break; }
         const Vec3 x0 = P[v];
         const double D0 = objective(v);
         if(D0 <= opt.fidelity_distance) continue;
@@ -2398,9 +2407,11 @@ private:
           q0[i] = cell_quality(cells[i]); sj0[i] = cell_sj(cells[i]); split0[i] = cell_split(cells[i]); conc0[i] = cell_concave(cells[i]);
         }
         const double nonortho_cap = (std::max)(opt.max_non_orthogonality, max_non_orthogonality(cells));
+        const bool on_rim = onto_hole_rim(v, x0);
         bool done = false;
         for(double alpha : {0.4, 0.2, 0.1, 0.05}) {
           const Vec3 x = constrain(v, sub(x0, mul(g, alpha * h / gn)));
+          if(!on_rim && onto_hole_rim(v, x)) continue;   // (its cells towards the cap would collapse)
           move(v, x);
           if(!(objective(v) < D0 * 0.98)) continue;
           bool ok = true;
@@ -2419,7 +2430,6 @@ private:
       if(moved == 0) break;
     }
     use_polish = polish_before;
-    opt.keep_quality = keep_before;
   }
 
   // OpenFOAM's "face tets" (checkMesh -allGeometry) fail at a face none of whose diagonal splits
@@ -2700,7 +2710,18 @@ private:
     // every later patch too
     loose.clear();
     loose_of.assign(P.size(), NO_LOOSE);
-    struct Loose_off { Boundary_capture_3& c; ~Loose_off() { c.loose_of.clear(); c.loose.clear(); } } loose_off{*this};
+    // (the vertices that left their feature are remembered: `fidelity_polish()` leaves them where they are)
+    struct Loose_off
+    {
+      Boundary_capture_3& c;
+      ~Loose_off()
+      {
+        for(const Loose& l : c.loose)
+          if(c.kind[l.v] == SURFACE) { c.left_feature.resize(c.P.size(), 0); c.left_feature[l.v] = 1; }
+        c.loose_of.clear();
+        c.loose.clear();
+      }
+    } loose_off{*this};
     auto guards_hold = [&](const std::vector<Eval>& ev) {
       for(Index v : pv)
         if(loose_of[v] != NO_LOOSE) {
@@ -3234,6 +3255,7 @@ private:
   Sparse_lists<Index> cnbrs;   // per curve vertex: its neighbours on its chain
   std::vector<double> hloc;
   std::vector<Loose> loose;               // `polish_patches()`: the loosened vertices
+  std::vector<char> left_feature;         // ... those of them kept off their feature (per vertex; empty if none)
   std::vector<std::uint32_t> loose_of;    // ... each vertex's entry in `loose` (NO_LOOSE: none; empty outside the polish)
   std::vector<std::vector<Segment_3>> curve_segments;
   std::vector<std::unique_ptr<Segment_tree>> curve_trees;
