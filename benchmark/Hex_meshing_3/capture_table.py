@@ -14,8 +14,9 @@ F times the default (the largest side of the input's bounding box / 40), e.g. 0.
 refinement level where it binds. The test sizes are no margin: this shows how the capture's figures
 hold at other sizes. The table then also gives the cells OpenFOAM finds concave and the faces
 failing its tet decomposition (the report's counts of checkMesh -allGeometry's), the captures run,
-and a last line with the number of files reaching the goals (min scaled Jacobian >= 0.3, no
-concave cell, no face-tet failure).
+and the number of files reaching the quality goals (min scaled Jacobian >= 0.3, no concave cell,
+no face-tet failure). The last line counts the files with no boundary face beyond a quarter
+surface size of the input (the fidelity goal).
 
 Usage: benchmark/Hex_meshing_3/capture_table.py [--hexmesh PATH] [--keep DIR] [--test-sizes]
                                                 [--size-factor F] [-- hexmesh options...]
@@ -102,7 +103,7 @@ def main():
     print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
           f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
           f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}")
-    goals = 0
+    goals = near = 0
     for stem, j, err in results:
         if j is None:
             print(f"{stem:20s} FAILED: {err.strip()}")
@@ -118,7 +119,9 @@ def main():
               f"{b.get('unreached_vertices', -1):4d} {q.get('concave_cells', -1):4d} {q.get('face_tet_errors', -1):4d} "
               f"{b.get('capture_tries', 0):4d} {j['seconds']['total']:5.2f}")
         goals += q["scaled_jacobian"]["min"] >= 0.3 and q.get("concave_cells") == 0 and q.get("face_tet_errors") == 0
+        near += fi["faces_beyond_quarter_surface_size"] == 0
     print(f"min scaled Jacobian >= 0.3, no concave cell and no face-tet failure: {goals} of {len(results)} files")
+    print(f"no boundary face beyond 0.25 x surface size: {near} of {len(results)} files")
 
 
 if __name__ == "__main__":
