@@ -2362,6 +2362,10 @@ private:
           for(std::size_t f : vertex_top_faces[h]) if(!skip_face(f)) worst = (std::max)(worst, centre_distance(f));
       return worst;
     };
+    // the vertices that slide: surface and curve vertices, not those the joint moves let off their feature
+    auto slidable = [&](Index w) {
+      return (kind[w] == SURFACE || kind[w] == CURVE) && !(w < left_feature.size() && left_feature[w]);
+    };
     const bool polish_before = use_polish;
     const double fq = opt.polish_quality;
     use_polish = true;
@@ -2373,11 +2377,9 @@ private:
       for(std::size_t f = 0; f < top_faces.size(); ++f)
         if(!skip_face(f) && centre_distance(f) > opt.fidelity_distance)
           for(Index w : m.boundary_faces[top_faces[f]].vertices)
-            if((kind[w] == SURFACE || kind[w] == CURVE) && !(w < left_feature.size() && left_feature[w])) work.push_back(w);
+            if(slidable(w)) work.push_back(w);
             else if(kind[w] == HANGING)   // its masters move it
-              for(const auto& hm : hang_masters[hang_of[w]])
-                if((kind[hm.first] == SURFACE || kind[hm.first] == CURVE) && !(hm.first < left_feature.size() && left_feature[hm.first]))
-                  work.push_back(hm.first);
+              for(const auto& hm : hang_masters[hang_of[w]]) if(slidable(hm.first)) work.push_back(hm.first);
       std::sort(work.begin(), work.end());
       work.erase(std::unique(work.begin(), work.end()), work.end());
       if(work.empty()) break;
@@ -2418,7 +2420,8 @@ private:
           for(std::size_t i = 0; i < cells.size() && ok; ++i) {
             const Index c = cells[i];
             const double floor = (std::min)(q0[i], fq);
-            ok = cell_quality_above(c, floor) >= floor && cell_sj(c) >= (std::min)(sj0[i], fq) &&
+            double sj = 1;   // (set when the quality reaches the floor)
+            ok = cell_quality_above(c, floor, &sj) >= floor && sj >= (std::min)(sj0[i], fq) &&
                  cell_split(c) >= (std::min)(split0[i], opt.min_face_split_quality) && (conc0[i] || !cell_concave(c));
           }
           if(ok && max_non_orthogonality(cells) > nonortho_cap) ok = false;
