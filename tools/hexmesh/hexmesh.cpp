@@ -731,19 +731,23 @@ int main(int argc, char** argv)
                          {"surface_size", surface_size}};
         // faces farther than 1/4, 1/2 and 1 surface size (the bound is 1/4), and the
         // farthest of them
-        std::vector<std::pair<double, std::array<double, 3>>> far;
         std::size_t beyond[3] = {0, 0, 0};
         for(const auto& fd : fid.face_distances) {
           const double r = fd.first / surface_size;
           for(int k = 0; k < 3; ++k) if(r > (k == 0 ? 0.25 : k == 1 ? 0.5 : 1.0)) ++beyond[k];
-          if(r > 0.25) far.push_back(fd);
         }
-        std::stable_sort(far.begin(), far.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+        // the faces beyond 1/4, farthest first, each with why it stands off (`far_faces()`)
+        const std::vector<HM::Far_face> far = HM::far_faces(mesh, fid, 0.25 * surface_size);
+        nlohmann::ordered_json causes = {{"hanging_corner", 0}, {"corner", 0}, {"folded", 0}, {"bent", 0}};
+        for(const HM::Far_face& ff : far) causes[HM::far_face_cause_name(ff.cause)] = causes[HM::far_face_cause_name(ff.cause)].get<std::size_t>() + 1;
         nlohmann::ordered_json jf = nlohmann::ordered_json::array();
-        for(std::size_t i = 0; i < far.size() && i < 50; ++i) jf.push_back({{"distance", far[i].first}, {"at", loc(far[i].second)}});
+        for(std::size_t i = 0; i < far.size() && i < 50; ++i)
+          jf.push_back({{"distance", far[i].distance}, {"at", loc(far[i].at)}, {"cause", HM::far_face_cause_name(far[i].cause)},
+                        {"fold", far[i].fold}, {"size", far[i].size}});
         j["fidelity"]["faces_beyond_quarter_surface_size"] = beyond[0];
         j["fidelity"]["faces_beyond_half_surface_size"] = beyond[1];
         j["fidelity"]["faces_beyond_surface_size"] = beyond[2];
+        j["fidelity"]["far_face_causes"] = causes;
         j["fidelity"]["farthest_faces"] = jf;
         // the feature curves: input sharp, open and non-manifold edges against the mesh
         // boundary's edges of the same dihedral angle, both ways; input corners against the

@@ -58,6 +58,11 @@ struct Boundary_fidelity
   /// mesh -> input, per surface face (caps left out, in the order of `mesh.boundary_faces`): the
   /// largest distance of its corners and centre, and the point where it is reached
   std::vector<std::pair<double, std::array<double, 3>>> face_distances;
+  /// per entry of `face_distances`: the face's index in `mesh.boundary_faces`
+  std::vector<std::size_t> face_indices;
+  /// per entry of `face_distances`: which point of the face is the farthest, 0..3 its corner
+  /// `vertices[k]`, 4 its centre (the vertex average)
+  std::vector<std::uint8_t> face_worst_points;
 };
 
 /*!
@@ -129,15 +134,17 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     }
     ++r.surface_faces;
     double worst = 0;
-    const Point_3* at = &centre;
+    std::uint8_t at = 4;
     const Point_3* pts[5] = {&a, &b, &c, &d, &centre};
-    for(const Point_3* p : pts) {
-      const double dist = std::sqrt(CGAL::to_double(domain.squared_distance(*p)));
-      if(dist > worst) { worst = dist; at = p; }
+    for(std::uint8_t k = 0; k < 5; ++k) {
+      const double dist = std::sqrt(CGAL::to_double(domain.squared_distance(*pts[k])));
+      if(dist > worst) { worst = dist; at = k; }
     }
-    const std::array<double, 3> where = {{CGAL::to_double(at->x()), CGAL::to_double(at->y()), CGAL::to_double(at->z())}};
+    const std::array<double, 3> where = {{CGAL::to_double(pts[at]->x()), CGAL::to_double(pts[at]->y()), CGAL::to_double(pts[at]->z())}};
     if(worst > r.max_face_distance) { r.max_face_distance = worst; r.worst_face_location = where; }
     r.face_distances.push_back({worst, where});
+    r.face_indices.push_back(std::size_t(&f - mesh.boundary_faces.data()));
+    r.face_worst_points.push_back(at);
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);
@@ -177,6 +184,93 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   r.samples = samples;
   r.mean_sample_distance = sum / double(samples);
   return r;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief why a boundary face stands off the input (see `far_faces()`), from the point of it that is
+ * farthest from the input.
+ */
+enum class Far_face_cause
+{
+  HANGING_CORNER,   ///< a corner that is a hanging node: the midpoint of a coarser face's edge, a chord of the surface
+  CORNER,           ///< another corner: a vertex that did not reach the surface (released, a cap, ...)
+  FOLDED,           ///< the centre, the face folded along a diagonal beyond the fold angle (a feature curve or a crease across it)
+  BENT              ///< the centre, the face not so folded: a face too large for the surface's curvature under it
+};
+
+/// the name of a `Far_face_cause` in reports: `hanging_corner`, `corner`, `folded`, `bent`
+inline const char* far_face_cause_name(Far_face_cause c)
+{
+  switch(c) {
+  case Far_face_cause::HANGING_CORNER: return "hanging_corner";
+  case Far_face_cause::CORNER: return "corner";
+  case Far_face_cause::FOLDED: return "folded";
+  default: return "bent";
+  }
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief a boundary face farther than a threshold from the input (see `far_faces()`).
+ */
+struct Far_face
+{
+  std::size_t face = 0;                  ///< its index in `mesh.boundary_faces`
+  double distance = 0;                   ///< the largest distance of its corners and centre to the input
+  std::array<double, 3> at = {{0, 0, 0}};   ///< the point where it is reached
+  Far_face_cause cause = Far_face_cause::BENT;
+  double fold = 0;   ///< degrees: the larger, over its two diagonals, of the angle between the normals of the two triangles the diagonal splits it into
+  double size = 0;   ///< its longer diagonal / sqrt(2) (the side of a square with that diagonal)
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief the boundary faces of `fid` (`boundary_fidelity()` of `mesh`) farther than `threshold`
+ * from the input, farthest first (ties in face order), each with its cause:
+ * - the farthest point a corner: `HANGING_CORNER` if that vertex is a hanging node of `mesh`, else
+ *   `CORNER`;
+ * - the farthest point the centre: `FOLDED` if the face's fold (see `Far_face::fold`) exceeds
+ *   `fold_angle` degrees, else `BENT`.
+ */
+template <typename HexMesh>
+std::vector<Far_face> far_faces(const HexMesh& mesh, const Boundary_fidelity& fid, double threshold, double fold_angle = 30)
+{
+  std::vector<char> hanging(mesh.points.size(), 0);
+  for(const auto& h : mesh.hanging_nodes) hanging[h.vertex] = 1;
+  typedef std::array<double, 3> V;
+  auto vec = [&](std::uint32_t v) -> V {
+    const auto& p = mesh.points[v];
+    return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
+  };
+  auto sub = [](const V& a, const V& b) -> V { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; };
+  auto cross = [](const V& a, const V& b) -> V {
+    return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
+  };
+  auto dot = [](const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  auto angle = [&](const V& u, const V& w) {   // degrees; 0 if either is degenerate
+    const double l = std::sqrt(dot(u, u) * dot(w, w));
+    return l > 0 ? std::acos((std::max)(-1.0, (std::min)(1.0, dot(u, w) / l))) * 180.0 / CGAL_PI : 0.0;
+  };
+  std::vector<Far_face> out;
+  for(std::size_t i = 0; i < fid.face_distances.size() && i < fid.face_indices.size() && i < fid.face_worst_points.size(); ++i) {
+    if(!(fid.face_distances[i].first > threshold)) continue;
+    Far_face ff;
+    ff.face = fid.face_indices[i];
+    ff.distance = fid.face_distances[i].first;
+    ff.at = fid.face_distances[i].second;
+    const auto& q = mesh.boundary_faces[ff.face].vertices;
+    const V a = vec(q[0]), b = vec(q[1]), c = vec(q[2]), d = vec(q[3]);
+    ff.fold = (std::max)(angle(cross(sub(b, a), sub(c, a)), cross(sub(c, a), sub(d, a))),    // along a-c
+                         angle(cross(sub(b, a), sub(d, a)), cross(sub(c, b), sub(d, b))));   // along b-d
+    ff.size = std::sqrt((std::max)(dot(sub(c, a), sub(c, a)), dot(sub(d, b), sub(d, b))) / 2);
+    const std::uint8_t k = fid.face_worst_points[i];
+    if(k < 4) ff.cause = hanging[q[k]] ? Far_face_cause::HANGING_CORNER : Far_face_cause::CORNER;
+    else ff.cause = ff.fold > fold_angle ? Far_face_cause::FOLDED : Far_face_cause::BENT;
+    out.push_back(ff);
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Far_face& x, const Far_face& y) { return x.distance > y.distance; });
+  return out;
 }
 
 /*!
