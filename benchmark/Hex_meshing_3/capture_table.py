@@ -7,10 +7,11 @@ Jacobian, cells below 0.3, max non-orthogonality (degrees), surface faces farthe
 and 1 surface size from the input and the farthest (x surface size), the input's farthest sampled
 point from the mesh, the feature fidelity both ways and the worst corner (x surface size), feature
 curves missed, buffer cells removed, vertices that could not reach the surface, total seconds,
-and why the faces beyond 1/4 surface size stand off (the report's far_face_causes, h/c/f/b): the
-farthest point a hanging corner (the midpoint of a coarser face's edge: a chord), another corner
-(a vertex that did not reach the surface), the centre of a face folded along a diagonal (a feature
-curve or a crease across it), the centre of a face only bent (too large for the curvature).
+and why the faces beyond 1/4 surface size stand off (the report's far_face_causes, h/k/c/f/b): the
+farthest point a hanging corner (the midpoint of a coarser face's edge: a chord), a corner nearest
+to a border edge of the input (a cap over a hole), another corner (a vertex that did not reach the
+surface), the centre of a face folded along a diagonal (a feature curve or a crease across it), the
+centre of a face only bent (too large for the curvature).
 
 With --test-sizes, each file also gets the options the tests give it (BODY_FITTED_SIZES in
 test/Hex_meshing_3/test_dirty_input.py, read from there); with --size-factor F, its surface size is
@@ -106,7 +107,7 @@ def main():
     print(head + "; distances in surface sizes")
     print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
           f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
-          f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}  {'h/c/f/b':s}")
+          f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}  {'h/k/c/f/b':s}")
     goals = near = 0
     for stem, j, err in results:
         if j is None:
@@ -122,7 +123,7 @@ def main():
               f"{rel(ff['max_corner_distance']):5.2f} {b.get('curves_missed', -1):4d} {b.get('removed_buffer_cells', -1):4d} "
               f"{b.get('unreached_vertices', -1):4d} {q.get('concave_cells', -1):4d} {q.get('face_tet_errors', -1):4d} "
               f"{b.get('capture_tries', 0):4d} {j['seconds']['total']:5.2f}  "
-              + "/".join(str(fi.get("far_face_causes", {}).get(k, "-")) for k in ("hanging_corner", "corner", "folded", "bent")))
+              + "/".join(str(fi.get("far_face_causes", {}).get(k, "-")) for k in ("hanging_corner", "cap_corner", "corner", "folded", "bent")))
         goals += q["scaled_jacobian"]["min"] >= 0.3 and q.get("concave_cells") == 0 and q.get("face_tet_errors") == 0
         near += fi["faces_beyond_quarter_surface_size"] == 0
     print(f"min scaled Jacobian >= 0.3, no concave cell and no face-tet failure: {goals} of {len(results)} files")

@@ -738,7 +738,7 @@ int main(int argc, char** argv)
         }
         // the faces beyond 1/4, farthest first, each with why it stands off (`far_faces()`)
         const std::vector<HM::Far_face> far = HM::far_faces(mesh, fid, 0.25 * surface_size);
-        nlohmann::ordered_json causes = {{"hanging_corner", 0}, {"corner", 0}, {"folded", 0}, {"bent", 0}};
+        nlohmann::ordered_json causes = {{"hanging_corner", 0}, {"cap_corner", 0}, {"corner", 0}, {"folded", 0}, {"bent", 0}};
         for(const HM::Far_face& ff : far) causes[HM::far_face_cause_name(ff.cause)] = causes[HM::far_face_cause_name(ff.cause)].get<std::size_t>() + 1;
         nlohmann::ordered_json jf = nlohmann::ordered_json::array();
         for(std::size_t i = 0; i < far.size() && i < 50; ++i)

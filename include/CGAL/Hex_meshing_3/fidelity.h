@@ -63,6 +63,9 @@ struct Boundary_fidelity
   /// per entry of `face_distances`: which point of the face is the farthest, 0..3 its corner
   /// `vertices[k]`, 4 its centre (the vertex average)
   std::vector<std::uint8_t> face_worst_points;
+  /// per entry of `face_distances`: 1 if the farthest point is a corner whose nearest input point
+  /// lies on a border edge of the input (a vertex of a cap over a hole, or next to one), else 0
+  std::vector<std::uint8_t> face_worst_on_border;
 };
 
 /*!
@@ -145,6 +148,8 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     r.face_distances.push_back({worst, where});
     r.face_indices.push_back(std::size_t(&f - mesh.boundary_faces.data()));
     r.face_worst_points.push_back(at);
+    r.face_worst_on_border.push_back(at < 4 && worst > 0 && border_tree &&
+                                     CGAL::to_double(border_tree->squared_distance(domain.closest_point(*pts[at]))) <= tiny * tiny);
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);
@@ -194,16 +199,18 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
 enum class Far_face_cause
 {
   HANGING_CORNER,   ///< a corner that is a hanging node: the midpoint of a coarser face's edge, a chord of the surface
-  CORNER,           ///< another corner: a vertex that did not reach the surface (released, a cap, ...)
+  CAP_CORNER,       ///< another corner, whose nearest input point is on a border edge: a vertex of a cap over a hole of the input
+  CORNER,           ///< another corner: a vertex that did not reach the surface (released, in a wedge, ...)
   FOLDED,           ///< the centre, the face folded along a diagonal beyond the fold angle (a feature curve or a crease across it)
   BENT              ///< the centre, the face not so folded: a face too large for the surface's curvature under it
 };
 
-/// the name of a `Far_face_cause` in reports: `hanging_corner`, `corner`, `folded`, `bent`
+/// the name of a `Far_face_cause` in reports: `hanging_corner`, `cap_corner`, `corner`, `folded`, `bent`
 inline const char* far_face_cause_name(Far_face_cause c)
 {
   switch(c) {
   case Far_face_cause::HANGING_CORNER: return "hanging_corner";
+  case Far_face_cause::CAP_CORNER: return "cap_corner";
   case Far_face_cause::CORNER: return "corner";
   case Far_face_cause::FOLDED: return "folded";
   default: return "bent";
@@ -229,7 +236,8 @@ struct Far_face
  * \brief the boundary faces of `fid` (`boundary_fidelity()` of `mesh`) farther than `threshold`
  * from the input, farthest first (ties in face order), each with its cause:
  * - the farthest point a corner: `HANGING_CORNER` if that vertex is a hanging node of `mesh`, else
- *   `CORNER`;
+ *   `CAP_CORNER` if its nearest input point lies on a border edge of the input
+ *   (`Boundary_fidelity::face_worst_on_border`), else `CORNER`;
  * - the farthest point the centre: `FOLDED` if the face's fold (see `Far_face::fold`) exceeds
  *   `fold_angle` degrees, else `BENT`.
  */
@@ -265,7 +273,10 @@ std::vector<Far_face> far_faces(const HexMesh& mesh, const Boundary_fidelity& fi
                          angle(cross(sub(b, a), sub(d, a)), cross(sub(c, b), sub(d, b))));   // along b-d
     ff.size = std::sqrt((std::max)(dot(sub(c, a), sub(c, a)), dot(sub(d, b), sub(d, b))) / 2);
     const std::uint8_t k = fid.face_worst_points[i];
-    if(k < 4) ff.cause = hanging[q[k]] ? Far_face_cause::HANGING_CORNER : Far_face_cause::CORNER;
+    if(k < 4)
+      ff.cause = hanging[q[k]] ? Far_face_cause::HANGING_CORNER
+               : i < fid.face_worst_on_border.size() && fid.face_worst_on_border[i] ? Far_face_cause::CAP_CORNER
+               : Far_face_cause::CORNER;
     else ff.cause = ff.fold > fold_angle ? Far_face_cause::FOLDED : Far_face_cause::BENT;
     out.push_back(ff);
   }
