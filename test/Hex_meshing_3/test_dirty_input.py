@@ -922,8 +922,10 @@ def main():
         if stem in LOOSENED:
             check(b["loosened_vertices"] > 0, f"{stem}: {b['loosened_vertices']} feature vertices loosened (expected some)")
         check(len(b["missed_curves_first_100"]) == min(100, b["curves_missed"]) and
-              len(b["curve_turns_first_100"]) == min(100, b["curve_turns"]),
-              f"{stem}: the report locates the {b['curves_missed']} missed curves and the {b['curve_turns']} chain turns")
+              len(b["curve_turns_first_100"]) == min(100, b["curve_turns"]) and
+              len(b["removed_buffer_cells_first_100"]) == min(100, b["removed_buffer_cells"]),
+              f"{stem}: the report locates the {b['curves_missed']} missed curves, the {b['curve_turns']} chain turns and "
+              f"the {b['removed_buffer_cells']} removed buffer cells")
         if stem in SAME_TOPOLOGY:
             same = (topo["input"]["components"] == topo["mesh_boundary"]["components"] and
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])

@@ -827,6 +827,10 @@ int main(int argc, char** argv)
           nlohmann::ordered_json tu = nlohmann::ordered_json::array();
           for(std::size_t i = 0; i < stats.curve_turns.size() && i < 100; ++i)
             tu.push_back({stats.curve_turns[i][0], stats.curve_turns[i][1], stats.curve_turns[i][2]});
+          nlohmann::ordered_json rb = nlohmann::ordered_json::array();
+          for(std::size_t i = 0; i < stats.removed_buffer_cell_centres.size() && i < 100; ++i)
+            rb.push_back({stats.removed_buffer_cell_centres[i][0], stats.removed_buffer_cell_centres[i][1], stats.removed_buffer_cell_centres[i][2]});
+          j["boundary"]["removed_buffer_cells_first_100"] = rb;
           j["boundary"]["curve_turns"] = stats.curve_turns.size();
           j["boundary"]["curve_turns_first_100"] = tu;
           nlohmann::ordered_json mc = nlohmann::ordered_json::array();

@@ -139,6 +139,9 @@ struct Meshing_statistics
   std::size_t non_orthogonal_faces = 0;     ///< faces non-orthogonal beyond 70 degrees found after the repairs (the buffer cells at them removed)
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
+  /// the centres (vertex averages) of the `removed_buffer_cells`, where the staircase face is the
+  /// boundary (its corners stand off the surface)
+  std::vector<std::array<double, 3>> removed_buffer_cell_centres;
   /// where a feature chain turns inside a face (two of its edges in a row): the middle vertex is
   /// left off the curve, which crosses that face along its diagonal (final positions)
   std::vector<std::array<double, 3>> curve_turns;

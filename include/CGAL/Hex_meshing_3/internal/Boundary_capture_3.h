@@ -3065,6 +3065,12 @@ private:
       }
     }
     rep.removed_buffer_cells += n;
+    for(std::size_t c = first; c < m.hexahedra.size(); ++c)
+      if(gone[c]) {
+        Vec3 x[8];
+        corners(Index(c), x);
+        rep.removed_buffer_cell_centres.push_back(hex_centre(x));
+      }
     std::vector<int> top_patch(m.hexahedra.size(), 6);
     std::vector<typename HexMesh::Boundary_face> faces;
     for(const auto& f : m.boundary_faces) {
