@@ -20,8 +20,8 @@ refinement level where it binds. The test sizes are no margin: this shows how th
 hold at other sizes. The table then also gives the cells OpenFOAM finds concave and the faces
 failing its tet decomposition (the report's counts of checkMesh -allGeometry's), the captures run,
 and the number of files reaching the quality goals (min scaled Jacobian >= 0.3, no concave cell,
-no face-tet failure). The last line counts the files with no boundary face beyond a quarter
-surface size of the input (the fidelity goal).
+no face-tet failure). The last lines count the files with no boundary face beyond a quarter
+surface size of the input (the fidelity goal), and the faces beyond it by cause over all files.
 
 Usage: benchmark/Hex_meshing_3/capture_table.py [--hexmesh PATH] [--keep DIR] [--test-sizes]
                                                 [--size-factor F] [-- hexmesh options...]
@@ -109,6 +109,7 @@ def main():
           f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
           f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}  {'h/k/c/f/b':s}")
     goals = near = 0
+    cause_total = {}
     for stem, j, err in results:
         if j is None:
             print(f"{stem:20s} FAILED: {err.strip()}")
@@ -126,8 +127,12 @@ def main():
               + "/".join(str(fi.get("far_face_causes", {}).get(k, "-")) for k in ("hanging_corner", "cap_corner", "corner", "folded", "bent")))
         goals += q["scaled_jacobian"]["min"] >= 0.3 and q.get("concave_cells") == 0 and q.get("face_tet_errors") == 0
         near += fi["faces_beyond_quarter_surface_size"] == 0
+        for k, v in fi.get("far_face_causes", {}).items():
+            cause_total[k] = cause_total.get(k, 0) + v
     print(f"min scaled Jacobian >= 0.3, no concave cell and no face-tet failure: {goals} of {len(results)} files")
     print(f"no boundary face beyond 0.25 x surface size: {near} of {len(results)} files")
+    if cause_total:
+        print("faces beyond 0.25 x surface size by cause, all files: " + ", ".join(f"{k} {v}" for k, v in cause_total.items()))
 
 
 if __name__ == "__main__":
