@@ -882,6 +882,7 @@ def main():
             hang = mv.point_data["hanging"]
             quads = np.concatenate([cb.data[cd >= 6] for cb, cd in zip(mv.cells, mv.cell_data["patch"]) if cb.type == "quad"])
             centres = X[quads].mean(axis=1)
+            corner_ids = np.unique(quads)
             tol = 1e-9 * float(np.linalg.norm(X.max(axis=0) - X.min(axis=0)))
 
             def fold_of(q):
@@ -892,8 +893,8 @@ def main():
             for f in listed:
                 p = np.array(f["at"])
                 if f["cause"] in ("hanging_corner", "cap_corner", "corner"):
-                    at = np.nonzero(np.linalg.norm(X[np.unique(quads)] - p, axis=1) <= tol)[0]
-                    ok = len(at) > 0 and any(bool(hang[np.unique(quads)[i]]) == (f["cause"] == "hanging_corner") for i in at)
+                    at = np.nonzero(np.linalg.norm(X[corner_ids] - p, axis=1) <= tol)[0]
+                    ok = len(at) > 0 and any(bool(hang[corner_ids[i]]) == (f["cause"] == "hanging_corner") for i in at)
                     ok = ok and (f["cause"] != "cap_corner" or topo["input"]["boundary_edges"] > 0)
                 else:
                     at = np.nonzero(np.linalg.norm(centres - p, axis=1) <= tol)[0]

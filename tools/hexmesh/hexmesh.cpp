@@ -739,7 +739,10 @@ int main(int argc, char** argv)
         // the faces beyond 1/4, farthest first, each with why it stands off (`far_faces()`)
         const std::vector<HM::Far_face> far = HM::far_faces(mesh, fid, 0.25 * surface_size);
         nlohmann::ordered_json causes = {{"hanging_corner", 0}, {"cap_corner", 0}, {"corner", 0}, {"folded", 0}, {"bent", 0}};
-        for(const HM::Far_face& ff : far) causes[HM::far_face_cause_name(ff.cause)] = causes[HM::far_face_cause_name(ff.cause)].get<std::size_t>() + 1;
+        for(const HM::Far_face& ff : far) {
+          auto& n = causes[HM::far_face_cause_name(ff.cause)];
+          n = n.get<std::size_t>() + 1;
+        }
         nlohmann::ordered_json jf = nlohmann::ordered_json::array();
         for(std::size_t i = 0; i < far.size() && i < 50; ++i)
           jf.push_back({{"distance", far[i].distance}, {"at", loc(far[i].at)}, {"cause", HM::far_face_cause_name(far[i].cause)},
@@ -814,29 +817,23 @@ int main(int argc, char** argv)
         for(const auto& s : progress.seconds)
           if(s.first == "refine" || s.first == "balance" || s.first == "classify") grid_seconds += s.second;
         if(!staircase) {
-          nlohmann::ordered_json un = nlohmann::ordered_json::array();
-          for(std::size_t i = 0; i < stats.unreached_vertices.size() && i < 100; ++i)
-            un.push_back({stats.unreached_vertices[i][0], stats.unreached_vertices[i][1], stats.unreached_vertices[i][2]});
+          // the first 100 of a list of points
+          auto first_100 = [](const std::vector<std::array<double, 3>>& pts) {
+            nlohmann::ordered_json a = nlohmann::ordered_json::array();
+            for(std::size_t i = 0; i < pts.size() && i < 100; ++i) a.push_back({pts[i][0], pts[i][1], pts[i][2]});
+            return a;
+          };
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
                            {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces}, {"non_orthogonal_faces", stats.non_orthogonal_faces},
                            {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
-                           {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", un}};
-          nlohmann::ordered_json tu = nlohmann::ordered_json::array();
-          for(std::size_t i = 0; i < stats.curve_turns.size() && i < 100; ++i)
-            tu.push_back({stats.curve_turns[i][0], stats.curve_turns[i][1], stats.curve_turns[i][2]});
-          nlohmann::ordered_json rb = nlohmann::ordered_json::array();
-          for(std::size_t i = 0; i < stats.removed_buffer_cell_centres.size() && i < 100; ++i)
-            rb.push_back({stats.removed_buffer_cell_centres[i][0], stats.removed_buffer_cell_centres[i][1], stats.removed_buffer_cell_centres[i][2]});
-          j["boundary"]["removed_buffer_cells_first_100"] = rb;
+                           {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", first_100(stats.unreached_vertices)}};
+          j["boundary"]["removed_buffer_cells_first_100"] = first_100(stats.removed_buffer_cell_centres);
           j["boundary"]["curve_turns"] = stats.curve_turns.size();
-          j["boundary"]["curve_turns_first_100"] = tu;
-          nlohmann::ordered_json mc = nlohmann::ordered_json::array();
-          for(std::size_t i = 0; i < stats.missed_curves.size() && i < 100; ++i)
-            mc.push_back({stats.missed_curves[i][0], stats.missed_curves[i][1], stats.missed_curves[i][2]});
-          j["boundary"]["missed_curves_first_100"] = mc;
+          j["boundary"]["curve_turns_first_100"] = first_100(stats.curve_turns);
+          j["boundary"]["missed_curves_first_100"] = first_100(stats.missed_curves);
           nlohmann::ordered_json cs = nlohmann::ordered_json::object();
           for(const auto& st : stats.capture_seconds) cs[st.first] = st.second;
           j["boundary"]["step_seconds"] = cs;

@@ -15,6 +15,7 @@
 // input's feature edges against the feature edges of the mesh boundary, and back; input corners
 // against the mesh's boundary vertices.
 
+#include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 
@@ -244,19 +245,10 @@ struct Far_face
 template <typename HexMesh>
 std::vector<Far_face> far_faces(const HexMesh& mesh, const Boundary_fidelity& fid, double threshold, double fold_angle = 30)
 {
+  using internal::Vec3; using internal::sub; using internal::cross; using internal::dot;
   std::vector<char> hanging(mesh.points.size(), 0);
   for(const auto& h : mesh.hanging_nodes) hanging[h.vertex] = 1;
-  typedef std::array<double, 3> V;
-  auto vec = [&](std::uint32_t v) -> V {
-    const auto& p = mesh.points[v];
-    return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}};
-  };
-  auto sub = [](const V& a, const V& b) -> V { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; };
-  auto cross = [](const V& a, const V& b) -> V {
-    return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
-  };
-  auto dot = [](const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-  auto angle = [&](const V& u, const V& w) {   // degrees; 0 if either is degenerate
+  auto angle = [](const Vec3& u, const Vec3& w) {   // degrees; 0 if either is degenerate
     const double l = std::sqrt(dot(u, u) * dot(w, w));
     return l > 0 ? std::acos((std::max)(-1.0, (std::min)(1.0, dot(u, w) / l))) * 180.0 / CGAL_PI : 0.0;
   };
@@ -268,7 +260,8 @@ std::vector<Far_face> far_faces(const HexMesh& mesh, const Boundary_fidelity& fi
     ff.distance = fid.face_distances[i].first;
     ff.at = fid.face_distances[i].second;
     const auto& q = mesh.boundary_faces[ff.face].vertices;
-    const V a = vec(q[0]), b = vec(q[1]), c = vec(q[2]), d = vec(q[3]);
+    const Vec3 a = internal::vec(mesh.points[q[0]]), b = internal::vec(mesh.points[q[1]]), c = internal::vec(mesh.points[q[2]]),
+               d = internal::vec(mesh.points[q[3]]);
     ff.fold = (std::max)(angle(cross(sub(b, a), sub(c, a)), cross(sub(c, a), sub(d, a))),    // along a-c
                          angle(cross(sub(b, a), sub(d, a)), cross(sub(c, b), sub(d, b))));   // along b-d
     ff.size = std::sqrt((std::max)(dot(sub(c, a), sub(c, a)), dot(sub(d, b), sub(d, b))) / 2);
