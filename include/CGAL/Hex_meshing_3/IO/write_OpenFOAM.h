@@ -80,6 +80,80 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
     if(concave && pm) *concave = count_concave(x);
     return x;
   }
+  // The count of concave cells as `concave_cells()` finds it, kept up to date where points move:
+  // the rounds below move the hanging nodes only, so only the faces with a moved node get their
+  // centre and area again, and only their cells their flag (the same values, to the bit, as a
+  // count from scratch; a full count per round took most of the export's time on motorBike).
+  typedef CGAL::Hex_meshing_3::internal::Vec3 Vec3;
+  std::vector<Vec3> fcentre, farea;
+  std::vector<std::uint32_t> cstart, cfaces, hstart, hfaces;   // cell -> faces, hanging node -> faces
+  std::vector<char> cflag, fmark, cmark;
+  std::size_t nconcave = 0;
+  auto face_geometry = [&](const std::vector<P3>& y, std::size_t f) {
+    CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fcentre[f], farea[f]);
+  };
+  std::vector<Vec3> cc, ca;
+  auto cell_flag = [&](std::size_t c) {
+    cc.clear(); ca.clear();
+    for(std::size_t i = cstart[c]; i < cstart[c + 1]; ++i) {
+      const std::size_t f = cfaces[i];
+      cc.push_back(fcentre[f]);
+      ca.push_back(CGAL::Hex_meshing_3::internal::mul(farea[f], pm->owner[f] == c ? 1.0 : -1.0));
+    }
+    return char(CGAL::Hex_meshing_3::internal::concave_cell(cc, ca) ? 1 : 0);
+  };
+  auto count_from_scratch = [&](const std::vector<P3>& y) {
+    const std::size_t nf = pm->faces.size(), nc = pm->number_of_cells, ni = pm->neighbour.size();
+    if(cstart.empty()) {
+      cstart.assign(nc + 1, 0);
+      for(std::size_t f = 0; f < nf; ++f) { ++cstart[pm->owner[f] + 1]; if(f < ni) ++cstart[pm->neighbour[f] + 1]; }
+      for(std::size_t c = 0; c < nc; ++c) cstart[c + 1] += cstart[c];
+      cfaces.resize(cstart[nc]);
+      std::vector<std::uint32_t> pos(cstart.begin(), cstart.end() - 1);
+      for(std::size_t f = 0; f < nf; ++f) {
+        cfaces[pos[pm->owner[f]]++] = std::uint32_t(f);
+        if(f < ni) cfaces[pos[pm->neighbour[f]]++] = std::uint32_t(f);
+      }
+      std::vector<std::uint32_t> hanging_index(x.size(), std::uint32_t(-1));
+      for(std::size_t i = 0; i < mesh.hanging_nodes.size(); ++i) hanging_index[mesh.hanging_nodes[i].vertex] = std::uint32_t(i);
+      hstart.assign(mesh.hanging_nodes.size() + 1, 0);
+      for(std::size_t f = 0; f < nf; ++f) for(auto v : pm->faces[f]) if(hanging_index[v] != std::uint32_t(-1)) ++hstart[hanging_index[v] + 1];
+      for(std::size_t i = 0; i + 1 < hstart.size(); ++i) hstart[i + 1] += hstart[i];
+      hfaces.resize(hstart.back());
+      std::vector<std::uint32_t> hpos(hstart.begin(), hstart.end() - 1);
+      for(std::size_t f = 0; f < nf; ++f) for(auto v : pm->faces[f]) if(hanging_index[v] != std::uint32_t(-1)) hfaces[hpos[hanging_index[v]]++] = std::uint32_t(f);
+      fcentre.resize(nf); farea.resize(nf); cflag.resize(nc); fmark.assign(nf, 0); cmark.assign(nc, 0);
+    }
+    for(std::size_t f = 0; f < nf; ++f) face_geometry(y, f);
+    nconcave = 0;
+    for(std::size_t c = 0; c < nc; ++c) nconcave += std::size_t(cflag[c] = cell_flag(c));
+    return nconcave;
+  };
+  std::vector<std::uint32_t> touched_faces, touched_cells;
+  // after the hanging nodes `moved` (indices into mesh.hanging_nodes) moved, from the last count
+  auto count_after = [&](const std::vector<P3>& y, const std::vector<std::size_t>& moved) {
+    touched_faces.clear(); touched_cells.clear();
+    for(std::size_t i : moved)
+      for(std::size_t k = hstart[i]; k < hstart[i + 1]; ++k)
+        if(!fmark[hfaces[k]]) { fmark[hfaces[k]] = 1; touched_faces.push_back(hfaces[k]); }
+    for(std::uint32_t f : touched_faces) {
+      fmark[f] = 0;
+      face_geometry(y, f);
+      const std::uint32_t o = std::uint32_t(pm->owner[f]);
+      if(!cmark[o]) { cmark[o] = 1; touched_cells.push_back(o); }
+      if(f < pm->neighbour.size()) {
+        const std::uint32_t n = std::uint32_t(pm->neighbour[f]);
+        if(!cmark[n]) { cmark[n] = 1; touched_cells.push_back(n); }
+      }
+    }
+    for(std::uint32_t c : touched_cells) {
+      cmark[c] = 0;
+      const char fl = cell_flag(c);
+      nconcave = nconcave - std::size_t(cflag[c]) + std::size_t(fl);
+      cflag[c] = fl;
+    }
+    return nconcave;
+  };
   std::vector<std::uint32_t> start, cells;   // the cells at each vertex
   CGAL::Hex_meshing_3::internal::vertex_cells(mesh, x.size(), start, cells);
   const double lo[3] = {mesh.box.xmin(), mesh.box.ymin(), mesh.box.zmin()};
@@ -140,14 +214,17 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
 
   std::vector<P3> best = y;
   std::vector<double> best_b = b;
-  std::size_t best_count = count_concave(y);
+  std::size_t best_count = count_from_scratch(y);
   std::vector<std::size_t> raised;
   // first the face nodes (a face split into quarters gets its roof from its centre alone), then
   // the edge nodes (the halves of a face split 1:2 have no centre node), each from the best so far
   for(const int masters : {4, 2}) {
     if(best_count == 0) break;
+    std::vector<std::size_t> reset;   // the nodes the best points so far have elsewhere
+    for(std::size_t i = 0; i < nh; ++i) if(b[i] != best_b[i]) reset.push_back(i);
     b = best_b;
     for(std::size_t i = 0; i < nh; ++i) place(i);
+    if(!reset.empty()) count_after(y, reset);
     double level = bulge;
     while(best_count > 0 && level * 1.5 <= max_bulge * (1 + 1e-12)) {
       const double previous = level;
@@ -168,7 +245,7 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
           if(!ok) { b[i] = previous; place(i); rises[i] = 0; again = true; }
         }
       }
-      const std::size_t n = count_concave(y);
+      const std::size_t n = count_after(y, raised);
       if(n < best_count) { best_count = n; best = y; best_b = b; }
     }
   }
