@@ -85,8 +85,13 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   (their staircase face is the boundary there), as are those at a face OpenFOAM would find
  *   skewed beyond 3.5 or non-orthogonal beyond 70 degrees; before that removal, the cells of faces that cannot be cut
  *   into positive tetrahedra with both cell centres (OpenFOAM's "face tets") are moved until
- *   they can, where their scaled Jacobian and non-orthogonality allow. Every cell of the result
- *   has a positive scaled Jacobian.
+ *   they can, where their scaled Jacobian and non-orthogonality allow. Then the buffer cells that
+ *   `checkMesh -allGeometry` would still find concave, or at a face failing the tet decomposition,
+ *   on the points an OpenFOAM case gets (`IO::write_OpenFOAM()` with its default bulge of the
+ *   hanging nodes) are removed too (`Meshing_statistics::foam_fault_cells`; where the capture may
+ *   be retried, see `capture_retry_cells`, only if the capture kept still has such faults: it
+ *   runs once more, the same, with the removal). Every cell of the result has a positive scaled
+ *   Jacobian.
  * - after the polish, the corners of the outer faces whose centre stands more than 0.2 local sizes off the
  *   surface (a chain turning inside a face, a stretched face over a convex region) slide on their
  *   surface or curve to bring the centre closer, as far as the polish's guards allow (no cell
@@ -182,7 +187,8 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       checkMesh -allGeometry reports (cells concave for OpenFOAM, faces failing its tet
  *       decomposition, on the points an OpenFOAM case gets); the mesh with the fewest such faults,
  *       then cells below 0.3, then the highest minimum is kept (deterministic; at most four
- *       captures; none with `polish_worst_cells(false)`). 0: never. A cancellation during a retry
+ *       captures, and a fifth, the kept one again with the buffer cells at such faults removed, if
+ *       it has any; none with `polish_worst_cells(false)`). 0: never. A cancellation during a retry
  *       keeps the best mesh so far. `Meshing_statistics::capture_tries` and `capture_choice` say
  *       what was done}
  *     \cgalParamType{`std::size_t`}
@@ -297,19 +303,29 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     };
     const bool may_retry = out.number_of_cells() <= retry_cells && retry_cells > 0 && copt.patch_iterations > 0 &&
                            !features->curves().empty();
+    // The buffer cells that checkMesh -allGeometry would still find concave or at a face failing
+    // the tet decomposition are removed at the end of the capture (`Meshing_statistics::
+    // foam_fault_cells`; their staircase faces become the boundary there). Where captures may be
+    // retried, the retries come first (another choice of paths may leave no such fault, with no
+    // cell removed), and the capture kept runs once more with the removal only if it has faults.
+    copt.remove_foam_faults = !may_retry;
     std::unique_ptr<HexMesh> grid;
     if(may_retry) grid = std::make_unique<HexMesh>(out);
     const Hex_meshing_3::Meshing_statistics stats0 = stats;
     bool ran = Capture(out, domain, features, stats, copt).run(visitor);
     stats.capture_tries = 1;
+    // (the paths depend on the ratio of the two weights: 5 by default, then 2.5, 3.75, 1.67)
+    const double turn_factor[4] = {1, 1, 0.75, 1}, snap_factor[4] = {1, 2, 1, 3};
+    auto options_of = [&](std::size_t choice) {
+      typename Capture::Options o = copt;
+      o.turn_penalty *= turn_factor[choice];
+      o.snap_weight *= snap_factor[choice];
+      return o;
+    };
     if(ran && may_retry) {
       auto best = faults(out);
-      // (the paths depend on the ratio of the two weights: 5 by default, then 2.5, 3.75, 1.67)
-      const double turn_factor[4] = {1, 1, 0.75, 1}, snap_factor[4] = {1, 2, 1, 3};
       for(std::size_t choice = 1; choice < 4 && (std::get<0>(best) > 0 || std::get<1>(best) > 0); ++choice) {
-        typename Capture::Options o = copt;
-        o.turn_penalty *= turn_factor[choice];
-        o.snap_weight *= snap_factor[choice];
+        const typename Capture::Options o = options_of(choice);
         HexMesh trial(*grid);
         Hex_meshing_3::Meshing_statistics st = stats0;
         const bool ok = Capture(trial, domain, features, st, o).run(visitor);
@@ -324,6 +340,20 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           stats.capture_tries = tries;
           stats.capture_choice = choice;
         }
+      }
+      if(status != Hex_meshing_3::Status::CANCELED && std::get<0>(best) > 0) {
+        typename Capture::Options o = options_of(stats.capture_choice);
+        o.remove_foam_faults = true;
+        HexMesh trial(*grid);
+        Hex_meshing_3::Meshing_statistics st = stats0;
+        const std::size_t tries = stats.capture_tries + 1, choice = stats.capture_choice;
+        if(Capture(trial, domain, features, st, o).run(visitor)) {
+          out = std::move(trial);
+          stats = st;
+          stats.capture_choice = choice;
+        } else
+          status = Hex_meshing_3::Status::CANCELED;   // (the best mesh so far stays)
+        stats.capture_tries = tries;
       }
     }
     if(!ran) status = Hex_meshing_3::Status::CANCELED;

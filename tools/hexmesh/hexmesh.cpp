@@ -824,7 +824,7 @@ int main(int argc, char** argv)
             return a;
           };
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
-                           {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces}, {"non_orthogonal_faces", stats.non_orthogonal_faces},
+                           {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces}, {"non_orthogonal_faces", stats.non_orthogonal_faces}, {"foam_fault_cells", stats.foam_fault_cells},
                            {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},

@@ -137,6 +137,7 @@ struct Meshing_statistics
   std::size_t split_warp_repairs = 0;       ///< vertex moves of the repair of warped faces split in four (concave for OpenFOAM)
   std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
   std::size_t non_orthogonal_faces = 0;     ///< faces non-orthogonal beyond 70 degrees found after the repairs (the buffer cells at them removed)
+  std::size_t foam_fault_cells = 0;         ///< buffer cells found concave, or at a face failing the tet decomposition, as checkMesh -allGeometry finds them on the OpenFOAM export (removed; `make_hex_mesh_3()`)
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
   /// the centres (vertex averages) of the `removed_buffer_cells`, where the staircase face is the

@@ -34,11 +34,14 @@
 //    Fidelity before quality: afterwards each of them goes back to its surface, curve or corner
 //    as far as its cells allow; those still off the surface are reported ("unreached"). A buffer
 //    cell that stays below min_valid_quality, or at a face OpenFOAM would find too skewed, is
-//    removed (the staircase face under it is the boundary there).
+//    removed (the staircase face under it is the boundary there), and so is one that checkMesh
+//    -allGeometry would find concave or at a face failing its tet decomposition
+//    (`Options::remove_foam_faults`).
 
 #include <CGAL/Hex_meshing_3/Hex_mesh_3.h>
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/quality.h>
+#include <CGAL/Hex_meshing_3/IO/write_OpenFOAM.h>
 #include <CGAL/Hex_meshing_3/internal/boundary_polygons.h>
 #include <CGAL/Hex_meshing_3/internal/Min_union_find.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
@@ -446,6 +449,7 @@ public:
     double second_polish_pyramid_weight = 2;   ///< the second polish counts the face pyramids at this many times their value (1: no second polish)
     int fidelity_passes = 3;                ///< sweeps of `fidelity_polish()` (0: none)
     double fidelity_distance = 0.2;         ///< ... over the top faces whose centre is farther than this (x the smallest local size of their corners) from the surface
+    bool remove_foam_faults = true;         ///< the cleanup removes the buffer cells that checkMesh -allGeometry would find concave or at a face failing the tet decomposition (on the points of the OpenFOAM export)
   };
 
   /// `stats` receives the counts of the capture (its body-fitted fields)
@@ -529,21 +533,46 @@ public:
     for(int round = 0; round < 8; ++round) {
       Polyhedral_mesh_3 pm;
       pm.build(m);
-      OpenFOAM_geometry g;
-      g.compute(m.points, pm);
-      std::vector<double> skewness, non_orthogonality;
-      face_non_orthogonality_and_skewness(m.points, pm, g, &non_orthogonality, skewness);
       const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
       std::vector<Index> extra;
-      for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-        const bool skewed = skewness[f] > opt.max_skewness;
-        const bool non_orthogonal = f < non_orthogonality.size() && non_orthogonality[f] > opt.removal_non_orthogonality;
-        if(!skewed && !non_orthogonal) continue;
-        const bool own = pm.owner[f] >= first, nei = f < pm.neighbour.size() && pm.neighbour[f] >= first;
-        if(skewed) ++rep.skewed_faces;
-        else if(own || nei) ++rep.non_orthogonal_faces;   // (between grid cells: left to the report)
-        if(own) extra.push_back(pm.owner[f]);
-        if(nei) extra.push_back(pm.neighbour[f]);
+      {
+        OpenFOAM_geometry g;
+        g.compute(m.points, pm);
+        std::vector<double> skewness, non_orthogonality;
+        face_non_orthogonality_and_skewness(m.points, pm, g, &non_orthogonality, skewness);
+        for(std::size_t f = 0; f < pm.faces.size(); ++f) {
+          const bool skewed = skewness[f] > opt.max_skewness;
+          const bool non_orthogonal = f < non_orthogonality.size() && non_orthogonality[f] > opt.removal_non_orthogonality;
+          if(!skewed && !non_orthogonal) continue;
+          const bool own = pm.owner[f] >= first, nei = f < pm.neighbour.size() && pm.neighbour[f] >= first;
+          if(skewed) ++rep.skewed_faces;
+          else if(own || nei) ++rep.non_orthogonal_faces;   // (between grid cells: left to the report)
+          if(own) extra.push_back(pm.owner[f]);
+          if(nei) extra.push_back(pm.neighbour[f]);
+        }
+      }   // (freed: the export's points and geometry come next, the cleanup's memory peak)
+      // then what checkMesh -allGeometry reports on the points an OpenFOAM case gets (hanging
+      // nodes bulged, `IO::internal::foam_points()` with the writer's defaults): the buffer cells
+      // that are concave, and those at a face failing the tet decomposition (the repairs guard
+      // both; what they leave goes)
+      if(extra.empty() && opt.remove_foam_faults) {
+        std::vector<char> concave, tets;
+        {
+          const auto x = IO::internal::foam_points(m, IO::default_hanging_bulge, &pm, IO::default_max_hanging_bulge);
+          OpenFOAM_geometry gx;
+          gx.compute(x, pm);
+          concave = concave_cells(pm, gx);
+          tets = face_tet_errors(x, pm, gx);
+        }
+        for(std::size_t c = first; c < concave.size(); ++c) if(concave[c]) extra.push_back(Index(c));
+        for(std::size_t f = 0; f < tets.size(); ++f) {
+          if(!tets[f]) continue;
+          if(pm.owner[f] >= first) extra.push_back(pm.owner[f]);
+          if(f < pm.neighbour.size() && pm.neighbour[f] >= first) extra.push_back(pm.neighbour[f]);
+        }
+        std::sort(extra.begin(), extra.end());
+        extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+        rep.foam_fault_cells += extra.size();
       }
       if(extra.empty()) break;
       remove_invalid_buffer_cells(extra);
