@@ -125,20 +125,28 @@ struct Polyhedral_mesh_3
     };
     std::unordered_map<std::uint64_t, Index> edge_mid;
     std::unordered_map<std::uint64_t, std::vector<std::pair<Key, Index>>> face_centre;  // by 2 smallest
+    // whether a vertex is a master of an edge (bit 1) or face (bit 2) hanging node: most are
+    // neither, and their faces need no lookup
+    std::vector<std::uint8_t> master(mesh.points.size(), 0);
     for(const auto& h : mesh.hanging_nodes) {
-      if(h.number_of_masters == 2) edge_mid[pair_key(h.masters[0], h.masters[1])] = h.vertex;
-      else {
+      if(h.number_of_masters == 2) {
+        edge_mid[pair_key(h.masters[0], h.masters[1])] = h.vertex;
+        master[h.masters[0]] |= 1; master[h.masters[1]] |= 1;
+      } else {
         const Key k = sorted(h.masters);
         face_centre[pair_key(k[0], k[1])].push_back({k, h.vertex});
+        for(Index v : k) master[v] |= 2;
       }
     }
     auto centre_of = [&](const Key& k, Index& c) {
+      if(!(master[k[0]] & master[k[1]] & master[k[2]] & master[k[3]] & 2)) return false;
       auto it = face_centre.find(pair_key(k[0], k[1]));
       if(it == face_centre.end()) return false;
       for(const auto& e : it->second) if(e.first == k) { c = e.second; return true; }
       return false;
     };
     auto mid_of = [&](Index a, Index b, Index& m) {
+      if(!(master[a] & master[b] & 1)) return false;
       auto it = edge_mid.find(pair_key(a, b));
       if(it == edge_mid.end()) return false;
       m = it->second; return true;
