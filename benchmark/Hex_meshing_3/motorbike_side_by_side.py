@@ -10,7 +10,7 @@ refinement box (-1,-0.7,0)-(8,0.7,2.5) at 1/16 m (level 4); 3 cells between leve
 
 For each mesher: cells, wall seconds and peak memory (snappy: snappyHexMesh -overwrite, with
 blockMesh and surfaceFeatureExtract apart; hexmesh: from reading to writing), checkMesh
--allTopology verdict, the concave cells and face-tet (flatness) faces of -allGeometry, max
+-allTopology verdict, the -allTopology -allGeometry verdict, the concave cells and face-tet (flatness) faces of -allGeometry, max
 non-orthogonality and skewness, hexahedra, and the boundary fidelity: foamToSurface of each mesh,
 box patches left out, measured both ways against the input by surface_distance (the same tool
 for both: area-uniform samples, CGAL AABB tree).
@@ -191,6 +191,7 @@ def main():
             ("wall seconds", lambda r: r["seconds"]),
             ("peak MiB", lambda r: round(r["peak_MiB"])),
             ("checkMesh -allTopology", lambda r: r["checkMesh"]["allTopology"]),
+            ("checkMesh -allTopology -allGeometry", lambda r: r["checkMesh"]["allGeometry"] + (f" ({len(r['checkMesh']['flags'])} flags)" if r["checkMesh"]["flags"] else "")),
             ("-allGeometry concave cells", lambda r: r["checkMesh"]["concave_cells"]),
             ("-allGeometry face-tet faces", lambda r: r["checkMesh"]["face_tet_faces"]),
             ("max non-orthogonality", lambda r: "%.1f" % r["checkMesh"]["max_non_orthogonality"]),
