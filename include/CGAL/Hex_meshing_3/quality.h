@@ -238,6 +238,37 @@ bool concave_cell(const Vec3s& centres, const Vec3s& outward_areas)
   }
   return false;
 }
+
+// the faces of each cell of `pm`: cell c's are faces[start[c] .. start[c + 1]) (32 bits: a memory peak)
+inline void cell_faces(const Polyhedral_mesh_3& pm, std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& faces)
+{
+  const std::size_t nc = pm.number_of_cells, nf = pm.faces.size(), ni = pm.neighbour.size();
+  CGAL_precondition(nf + ni <= std::numeric_limits<std::uint32_t>::max());
+  start.assign(nc + 1, 0);
+  for(std::size_t f = 0; f < nf; ++f) { ++start[pm.owner[f] + 1]; if(f < ni) ++start[pm.neighbour[f] + 1]; }
+  for(std::size_t c = 0; c < nc; ++c) start[c + 1] += start[c];
+  faces.resize(start[nc]);
+  std::vector<std::uint32_t> pos(start.begin(), start.end() - 1);
+  for(std::size_t f = 0; f < nf; ++f) {
+    faces[pos[pm.owner[f]]++] = std::uint32_t(f);
+    if(f < ni) faces[pos[pm.neighbour[f]]++] = std::uint32_t(f);
+  }
+}
+
+// OpenFOAM's concave test of cell c of `pm`, from its faces (`cell_faces()`) and their centres
+// and area vectors (`centres`, `areas`: work space)
+inline bool concave_cell(const Polyhedral_mesh_3& pm, std::size_t c, const std::vector<std::uint32_t>& start,
+                         const std::vector<std::uint32_t>& faces, const std::vector<Vec3>& face_centres,
+                         const std::vector<Vec3>& face_areas, std::vector<Vec3>& centres, std::vector<Vec3>& areas)
+{
+  centres.clear(); areas.clear();
+  for(std::size_t i = start[c]; i < start[c + 1]; ++i) {
+    const std::size_t f = faces[i];
+    centres.push_back(face_centres[f]);
+    areas.push_back(mul(face_areas[f], pm.owner[f] == c ? 1.0 : -1.0));
+  }
+  return concave_cell(centres, areas);
+}
 } // namespace internal
 
 /*!
@@ -254,31 +285,13 @@ bool concave_cell(const Vec3s& centres, const Vec3s& outward_areas)
 inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g)
 {
   using namespace internal;
-  const std::size_t nc = pm.number_of_cells, nf = pm.faces.size(), ni = pm.neighbour.size();
-  CGAL_precondition(g.face_areas.size() == nf && g.face_centres.size() == nf);   // `compute()`, not `compute_cells()`
-  CGAL_precondition(nf + ni <= std::numeric_limits<std::uint32_t>::max());    // the 32-bit lists below
-  std::vector<std::uint32_t> start(nc + 1, 0), faces;   // the faces of each cell (32 bits: a memory peak)
-  for(std::size_t f = 0; f < nf; ++f) { ++start[pm.owner[f] + 1]; if(f < ni) ++start[pm.neighbour[f] + 1]; }
-  for(std::size_t c = 0; c < nc; ++c) start[c + 1] += start[c];
-  faces.resize(start[nc]);
-  {
-    std::vector<std::uint32_t> pos(start.begin(), start.end() - 1);
-    for(std::size_t f = 0; f < nf; ++f) {
-      faces[pos[pm.owner[f]]++] = std::uint32_t(f);
-      if(f < ni) faces[pos[pm.neighbour[f]]++] = std::uint32_t(f);
-    }
-  }
-  std::vector<char> concave(nc, 0);
+  CGAL_precondition(g.face_areas.size() == pm.faces.size() && g.face_centres.size() == pm.faces.size());   // `compute()`, not `compute_cells()`
+  std::vector<std::uint32_t> start, faces;
+  cell_faces(pm, start, faces);
+  std::vector<char> concave(pm.number_of_cells, 0);
   std::vector<Vec3> centres, areas;
-  for(std::size_t c = 0; c < nc; ++c) {
-    centres.clear(); areas.clear();
-    for(std::size_t i = start[c]; i < start[c + 1]; ++i) {
-      const std::size_t f = faces[i];
-      centres.push_back(g.face_centres[f]);
-      areas.push_back(mul(g.face_areas[f], pm.owner[f] == c ? 1.0 : -1.0));
-    }
-    concave[c] = concave_cell(centres, areas) ? 1 : 0;
-  }
+  for(std::size_t c = 0; c < pm.number_of_cells; ++c)
+    concave[c] = concave_cell(pm, c, start, faces, g.face_centres, g.face_areas, centres, areas) ? 1 : 0;
   return concave;
 }
 

@@ -70,50 +70,25 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
   std::vector<P3> x(mesh.points.size());
   for(std::size_t v = 0; v < x.size(); ++v)
     x[v] = {{CGAL::to_double(mesh.points[v].x()), CGAL::to_double(mesh.points[v].y()), CGAL::to_double(mesh.points[v].z())}};
-  auto count_concave = [&](const std::vector<P3>& y) {
-    CGAL::Hex_meshing_3::OpenFOAM_geometry g;
-    g.compute(y, *pm);
-    const std::vector<char> flags = CGAL::Hex_meshing_3::concave_cells(*pm, g);
-    return std::size_t(std::count(flags.begin(), flags.end(), char(1)));
-  };
-  if(!(bulge > 0) || mesh.hanging_nodes.empty()) {
-    if(concave && pm) *concave = count_concave(x);
-    return x;
-  }
   // The count of concave cells as `concave_cells()` finds it, kept up to date where points move:
   // the rounds below move the hanging nodes only, so only the faces with a moved node get their
   // centre and area again, and only their cells their flag (the same values, to the bit, as a
   // count from scratch; a full count per round took most of the export's time on motorBike).
   typedef CGAL::Hex_meshing_3::internal::Vec3 Vec3;
-  std::vector<Vec3> fcentre, farea;
+  std::vector<Vec3> fcentre, farea, cc, ca;
   std::vector<std::uint32_t> cstart, cfaces, hstart, hfaces;   // cell -> faces, hanging node -> faces
   std::vector<char> cflag, fmark, cmark;
   std::size_t nconcave = 0;
   auto face_geometry = [&](const std::vector<P3>& y, std::size_t f) {
     CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fcentre[f], farea[f]);
   };
-  std::vector<Vec3> cc, ca;
   auto cell_flag = [&](std::size_t c) {
-    cc.clear(); ca.clear();
-    for(std::size_t i = cstart[c]; i < cstart[c + 1]; ++i) {
-      const std::size_t f = cfaces[i];
-      cc.push_back(fcentre[f]);
-      ca.push_back(CGAL::Hex_meshing_3::internal::mul(farea[f], pm->owner[f] == c ? 1.0 : -1.0));
-    }
-    return char(CGAL::Hex_meshing_3::internal::concave_cell(cc, ca) ? 1 : 0);
+    return char(CGAL::Hex_meshing_3::internal::concave_cell(*pm, c, cstart, cfaces, fcentre, farea, cc, ca) ? 1 : 0);
   };
   auto count_from_scratch = [&](const std::vector<P3>& y) {
-    const std::size_t nf = pm->faces.size(), nc = pm->number_of_cells, ni = pm->neighbour.size();
+    const std::size_t nf = pm->faces.size(), nc = pm->number_of_cells;
     if(cstart.empty()) {
-      cstart.assign(nc + 1, 0);
-      for(std::size_t f = 0; f < nf; ++f) { ++cstart[pm->owner[f] + 1]; if(f < ni) ++cstart[pm->neighbour[f] + 1]; }
-      for(std::size_t c = 0; c < nc; ++c) cstart[c + 1] += cstart[c];
-      cfaces.resize(cstart[nc]);
-      std::vector<std::uint32_t> pos(cstart.begin(), cstart.end() - 1);
-      for(std::size_t f = 0; f < nf; ++f) {
-        cfaces[pos[pm->owner[f]]++] = std::uint32_t(f);
-        if(f < ni) cfaces[pos[pm->neighbour[f]]++] = std::uint32_t(f);
-      }
+      CGAL::Hex_meshing_3::internal::cell_faces(*pm, cstart, cfaces);
       std::vector<std::uint32_t> hanging_index(x.size(), std::uint32_t(-1));
       for(std::size_t i = 0; i < mesh.hanging_nodes.size(); ++i) hanging_index[mesh.hanging_nodes[i].vertex] = std::uint32_t(i);
       hstart.assign(mesh.hanging_nodes.size() + 1, 0);
@@ -129,6 +104,10 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
     for(std::size_t c = 0; c < nc; ++c) nconcave += std::size_t(cflag[c] = cell_flag(c));
     return nconcave;
   };
+  if(!(bulge > 0) || mesh.hanging_nodes.empty()) {
+    if(concave && pm) *concave = count_from_scratch(x);
+    return x;
+  }
   std::vector<std::uint32_t> touched_faces, touched_cells;
   // after the hanging nodes `moved` (indices into mesh.hanging_nodes) moved, from the last count
   auto count_after = [&](const std::vector<P3>& y, const std::vector<std::size_t>& moved) {
