@@ -425,6 +425,8 @@ public:
     int reattach_rounds = 10;      ///< rounds moving released vertices back towards the surface
     double snap_weight = 4;        ///< bias of the feature paths towards their curve
     double turn_penalty = 20;      ///< extra cost (x edge length) of a path turning inside a top face
+    double curve_corridor = 3;     ///< a feature path keeps its vertices this close to its curve (x local size) ...
+    double wide_curve_corridor = 6;   ///< ... or, if no path does, this close
     double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
     double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
     double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
@@ -1106,10 +1108,14 @@ private:
       std::vector<double> arc{0};
       for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
       // a path that never turns inside a face if there is one, else one that turns as little as
-      // it can
+      // it can; if none keeps within `curve_corridor` local sizes of the curve, one within
+      // `wide_curve_corridor` (fine cells at a thin or acute part leave the buffer's vertices
+      // several of their sizes short of a ridge: t20_part's two curved ridges were missed, and
+      // the mesh cut across them 0.37 surface sizes off)
       auto find_path = [&](Index a, Index b) {
-        std::vector<Index> p = shortest_path(a, b, int(c), used, true);
-        if(p.empty()) p = shortest_path(a, b, int(c), used, false);
+        std::vector<Index> p = shortest_path(a, b, int(c), used, true, opt.curve_corridor);
+        if(p.empty()) p = shortest_path(a, b, int(c), used, false, opt.curve_corridor);
+        if(p.empty()) p = shortest_path(a, b, int(c), used, false, opt.wide_curve_corridor);
         return p;
       };
       // a free surface vertex within one local size of the curve's point at arc length s
@@ -1685,7 +1691,8 @@ private:
   }
 
   // Dijkstra on the top-face edges: cost = length x (1 + w (distance of both ends to the curve) / h)
-  std::vector<Index> shortest_path(Index from, Index to, int curve, const std::vector<char>& used, bool strict)
+  std::vector<Index> shortest_path(Index from, Index to, int curve, const std::vector<char>& used, bool strict,
+                                   double corridor)
   {
     if(from == to) return {};
     std::unordered_map<Index, double> dist;
@@ -1708,10 +1715,10 @@ private:
         const bool turns = pv != pred.end() && share_top_face(pv->second, v, w);
         if(turns && strict) continue;
         const double turn = turns ? opt.turn_penalty : 0.0;
-        // stay near the curve: at most a few cells away
+        // stay near the curve: at most `corridor` local sizes away
         const Vec3 cp = closest_on_curve(P[w], curve);
         const double dw = norm(sub(cp, P[w]));
-        if(dw > 3 * hloc[w]) continue;
+        if(dw > corridor * hloc[w]) continue;
         // another curve's corner is passed only if it lies on this curve (a T-junction)
         if(w != to && kind[w] == CORNER && !(dw < 1e-3 * hloc[w])) continue;
         // a vertex whose inner vertex does not see its curve point in front of its staircase faces
