@@ -97,6 +97,21 @@ def dirty_inputs():
     return dirty
 
 
+def source_commit():
+    """the repository's commit the meshers were built from ('+ local changes' if include/, tools/
+    or benchmark/ differ from it), or 'unknown' outside a git checkout"""
+    try:
+        h = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
+                           timeout=20)
+        if h.returncode != 0:
+            return "unknown"
+        d = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--", "include", "tools", "benchmark"],
+                           capture_output=True, text=True, timeout=20)
+        return h.stdout.strip() + (" + local changes" if d.stdout.strip() else "")
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
 def cpu_model():
     try:
         for line in open("/proc/cpuinfo"):
@@ -746,6 +761,7 @@ def main():
         files = {n: p for n, p in files.items() if n in args.only}
     jobs = [(n, p, d) for d in sorted(divisions) for n, p in files.items()]
     t0 = datetime.datetime.now()
+    commit = source_commit()   # what the meshers were built from, before they run
     rows = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as ex:
         free = list(range(args.jobs))
@@ -778,7 +794,8 @@ def main():
             r["outcome"] = "silent failure"
             r["message"] = f"the boundary goes {r['mesh_to_input_max'] / r['h']:.1f} h away from the input (a leak)"
     elapsed = (datetime.datetime.now() - t0).total_seconds()
-    meta = {"date": t0.strftime("%Y-%m-%d"), "machine": platform.node(), "cpu": cpu_model(), "dirty": sorted(dirty_inputs()),
+    meta = {"date": t0.strftime("%Y-%m-%d"), "commit": commit, "machine": platform.node(), "cpu": cpu_model(),
+            "dirty": sorted(dirty_inputs()),
             "cores": os.cpu_count(), "jobs": args.jobs, "divisions": divisions, "suite_seconds": elapsed,
             "inputs": {n: os.path.relpath(p, ROOT) for n, p in files.items()}}
     # the date and duration of the run that made the rows: a --reuse pass keeps those of the last
@@ -790,10 +807,11 @@ def main():
         meta["reused"] = True
         if rerun:
             meta["rerun"] = ((meta.get("rerun") + "; ") if meta.get("rerun") else "") + rerun
-            json.dump({k: meta[k] for k in ("date", "machine", "cpu", "cores", "jobs", "suite_seconds", "rerun")},
+            json.dump({k: meta[k] for k in ("date", "commit", "machine", "cpu", "cores", "jobs", "suite_seconds", "rerun") if k in meta},
                       open(run_file, "w"))
     elif not args.reuse:
-        json.dump({k: meta[k] for k in ("date", "machine", "cpu", "cores", "jobs", "suite_seconds")}, open(run_file, "w"))
+        json.dump({k: meta[k] for k in ("date", "commit", "machine", "cpu", "cores", "jobs", "suite_seconds")},
+                  open(run_file, "w"))
     with open(os.path.join(args.work, "results.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=CSV_FIELDS, extrasaction="ignore")
         w.writeheader()
@@ -886,7 +904,7 @@ def publish(args, rows, summary, t_main, t_rob, meta):
 \\anchor Chapter_Hex_meshing_3_Benchmarks
 
 This page is written by `benchmark/Hex_meshing_3/suite.py --publish`; every number comes from the
-run of {meta['date']} on {meta['machine']} ({meta['cpu']}, {meta['cores']} cores, {meta['jobs']} jobs at a
+run of {meta['date']} (commit {meta.get('commit', 'unknown')}) on {meta['machine']} ({meta['cpu']}, {meta['cores']} cores, {meta['jobs']} jobs at a
 time, each pinned to one core; the whole suite took {meta['suite_seconds']:.0f} s{'; ' + meta['rerun'] if meta.get('rerun') else ''}).
 Rerun it to refresh the page. Dirty inputs (the test data's MANIFEST): {', '.join(meta['dirty'])}.
 
@@ -960,7 +978,7 @@ and results.json.
     readme = os.path.join(ROOT, "README.md")
     s = open(readme).read()
     block = (f"<!-- benchmarks: written by benchmark/Hex_meshing_3/suite.py --publish -->\n"
-             f"Tetrahedra versus hexahedra, and snappyHexMesh beside them, on the test surfaces, measured {meta['date']} on {meta['machine']} "
+             f"Tetrahedra versus hexahedra, and snappyHexMesh beside them, on the test surfaces, measured {meta['date']} (commit {meta.get('commit', 'unknown')}) on {meta['machine']} "
              f"({meta['cores']} cores; the manual's Benchmarks page has the whole table, robustness and figures):\n\n"
              + "\n".join(lines) + "\n<!-- /benchmarks -->")
     if "<!-- benchmarks" in s:
