@@ -802,7 +802,8 @@ def main():
     # pass that ran them all (run.json)
     run_file = os.path.join(args.work, "run.json")
     if (args.reuse or args.rerun) and os.path.exists(run_file):
-        rerun = f"{', '.join(args.rerun)} run again on {meta['date']} in {elapsed:.0f} s" if args.rerun else None
+        rerun = (f"{', '.join(args.rerun)} run again on {meta['date']} (commit {commit}) in {elapsed:.0f} s"
+                 if args.rerun else None)
         meta.update(json.load(open(run_file)))
         meta["reused"] = True
         if rerun:
