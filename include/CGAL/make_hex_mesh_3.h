@@ -89,9 +89,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   `checkMesh -allGeometry` would still find concave, or at a face failing the tet decomposition,
  *   on the points an OpenFOAM case gets (`IO::write_OpenFOAM()` with its default bulge of the
  *   hanging nodes) are removed too (`Meshing_statistics::foam_fault_cells`; where the capture may
- *   be retried, see `capture_retry_cells`, only if the capture kept still has such faults: it
- *   runs once more, the same, with the removal). Every cell of the result has a positive scaled
- *   Jacobian.
+ *   be retried, see `capture_retry_cells`, the retries do not remove them, and a retry kept that
+ *   has such faults runs once more, the same, with the removal). Every cell of the result has a
+ *   positive scaled Jacobian.
  * - after the polish, the corners of the outer faces whose centre stands more than 0.2 local sizes off the
  *   surface (a chain turning inside a face, a stretched face over a convex region) slide on their
  *   surface or curve to bring the centre closer, as far as the polish's guards allow (no cell
@@ -187,11 +187,11 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       checkMesh -allGeometry reports (cells concave for OpenFOAM, faces failing its tet
  *       decomposition, on the points an OpenFOAM case gets); the mesh with the fewest such faults,
  *       then cells below 0.3, then the highest minimum is kept (deterministic; at most four
- *       captures, and a fifth, the kept one again with the buffer cells at such faults removed, if
- *       it has any; none with `polish_worst_cells(false)`). The retries are not run if the first
- *       capture leaves more than 10 cells below 0.3 (the grid is then too coarse for the shape,
- *       and other paths do not lift them); its faults are still removed, by a second capture with
- *       the removal. 0: never. A cancellation during a retry
+ *       captures; the first removes the buffer cells at its faults, which count as its faults, the
+ *       retries do not, and a retry kept that has faults runs a fifth time with the removal; none
+ *       with `polish_worst_cells(false)`). The retries are not run if the first capture leaves
+ *       more than 10 cells below 0.3 (the grid is then too coarse for the shape, and other paths
+ *       do not lift them). 0: never. A cancellation during a retry
  *       keeps the best mesh so far. `Meshing_statistics::capture_tries` and `capture_choice` say
  *       what was done}
  *     \cgalParamType{`std::size_t`}
@@ -309,14 +309,15 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
                            !features->curves().empty();
     // The buffer cells that checkMesh -allGeometry would still find concave or at a face failing
     // the tet decomposition are removed at the end of the capture (`Meshing_statistics::
-    // foam_fault_cells`; their staircase faces become the boundary there). Where captures may be
-    // retried, the retries come first (another choice of paths may leave no such fault, with no
-    // cell removed), and the capture kept runs once more with the removal only if it has faults.
-    copt.remove_foam_faults = !may_retry;
+    // foam_fault_cells`; their staircase faces become the boundary there). The first capture
+    // removes them; the retries do not (another choice of paths may leave no such fault, with no
+    // cell removed), and a retry kept runs once more with the removal if it has faults.
+    copt.remove_foam_faults = true;
     std::unique_ptr<HexMesh> grid;
     if(may_retry) grid = std::make_unique<HexMesh>(out);
     const Hex_meshing_3::Meshing_statistics stats0 = stats;
-    bool ran = Capture(out, domain, features, stats, copt).run(visitor);
+    Capture first_capture(out, domain, features, stats, copt);
+    bool ran = first_capture.run(visitor);
     stats.capture_tries = 1;
     // (the paths depend on the ratio of the two weights: 5 by default, then 2.5, 3.75, 1.67)
     const double turn_factor[4] = {1, 1, 0.75, 1}, snap_factor[4] = {1, 2, 1, 3};
@@ -335,10 +336,14 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // faults are still removed (the capture runs once more with the removal).
     const std::size_t max_low_cells = 10;
     if(ran && may_retry) {
+      // the first capture's faults: those its removal found (as `faults()` counts them on the
+      // same capture without the removal); its cells below 0.3 and minimum after the removal
       auto best = faults(out);
+      std::get<0>(best) = first_capture.foam_faults_found;
       const bool hopeless = std::get<1>(best) > max_low_cells;
       for(std::size_t choice = 1; choice < 4 && !hopeless && (std::get<0>(best) > 0 || std::get<1>(best) > 0); ++choice) {
-        const typename Capture::Options o = options_of(choice);
+        typename Capture::Options o = options_of(choice);
+        o.remove_foam_faults = false;
         HexMesh trial(*grid);
         Hex_meshing_3::Meshing_statistics st = stats0;
         const bool ok = Capture(trial, domain, features, st, o).run(visitor);
@@ -354,7 +359,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           stats.capture_choice = choice;
         }
       }
-      if(status != Hex_meshing_3::Status::CANCELED && std::get<0>(best) > 0) {
+      if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<0>(best) > 0) {
         typename Capture::Options o = options_of(stats.capture_choice);
         o.remove_foam_faults = true;
         HexMesh trial(*grid);

@@ -454,6 +454,11 @@ public:
     bool remove_foam_faults = true;         ///< the cleanup removes the buffer cells that checkMesh -allGeometry would find concave or at a face failing the tet decomposition (on the points of the OpenFOAM export)
   };
 
+  /// with `remove_foam_faults`, after `run()`: the cells concave for OpenFOAM (all, not only the
+  /// buffer's) and the faces failing its tet decomposition before the removal, as
+  /// `checkMesh -allGeometry` would count them on the mesh the same capture gives without it
+  std::size_t foam_faults_found = 0;
+
   /// `stats` receives the counts of the capture (its body-fitted fields)
   Boundary_capture_3(HexMesh& mesh, const Domain& domain, const FeatureCurves* features, Meshing_statistics& stats,
                      const Options& o = Options())
@@ -565,6 +570,11 @@ public:
           gx.compute(x, pm);
           concave = concave_cells(pm, gx);
           tets = face_tet_errors(x, pm, gx);
+        }
+        if(!foam_checked) {   // what checkMesh -allGeometry would find without the removal
+          foam_checked = true;
+          foam_faults_found = std::size_t(std::count(concave.begin(), concave.end(), char(1))) +
+                              std::size_t(std::count(tets.begin(), tets.end(), char(1)));
         }
         for(std::size_t c = first; c < concave.size(); ++c) if(concave[c]) extra.push_back(Index(c));
         for(std::size_t f = 0; f < tets.size(); ++f) {
@@ -3316,6 +3326,7 @@ private:
   bool cancelled = false;
   bool second_polish = false;      // the second polish: the face pyramids weighted, the cells' concavity guarded
   std::vector<char> conc_old;     // (the second polish, `improve()`) the cells concave before the move
+  bool foam_checked = false;      // `foam_faults_found` was counted (the first check of the cleanup's rounds)
   bool use_polish = false;        // cell_quality() counts the split faces' warp, improve() guards the rest (the polish)
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
