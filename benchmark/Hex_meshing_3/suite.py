@@ -980,7 +980,8 @@ and results.json.
     s = open(readme).read()
     block = (f"<!-- benchmarks: written by benchmark/Hex_meshing_3/suite.py --publish -->\n"
              f"Tetrahedra versus hexahedra, and snappyHexMesh beside them, on the test surfaces, measured {meta['date']} (commit {meta.get('commit', 'unknown')}) on {meta['machine']} "
-             f"({meta['cores']} cores; the manual's Benchmarks page has the whole table, robustness and figures):\n\n"
+             f"({meta['cores']} cores{'; ' + meta['rerun'] if meta.get('rerun') else ''}; the manual's Benchmarks page has "
+             f"the whole table, robustness and figures):\n\n"
              + "\n".join(lines) + "\n<!-- /benchmarks -->")
     if "<!-- benchmarks" in s:
         s = re.sub(r"<!-- benchmarks.*?<!-- /benchmarks -->", lambda m: block, s, flags=re.S)
