@@ -302,8 +302,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       Hex_meshing_3::OpenFOAM_geometry g;
       g.compute_cells(x, pm);
       const std::vector<char> ft = Hex_meshing_3::face_tet_errors(x, pm, g);
+      const std::vector<double> det = Hex_meshing_3::cell_determinants(x, pm);
+      const std::size_t small = std::size_t(std::count_if(det.begin(), det.end(), [](double d) {
+        return d < Hex_meshing_3::openfoam_min_cell_determinant; }));
       const auto low = low_cells(mesh);
-      return std::make_tuple(concave + std::size_t(std::count(ft.begin(), ft.end(), char(1))), low.first, -low.second);
+      return std::make_tuple(concave + small + std::size_t(std::count(ft.begin(), ft.end(), char(1))), low.first,
+                             -low.second);
     };
     const bool may_retry = out.number_of_cells() <= retry_cells && retry_cells > 0 && copt.patch_iterations > 0 &&
                            !features->curves().empty();

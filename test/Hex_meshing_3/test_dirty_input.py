@@ -863,6 +863,18 @@ def main():
         foam_face_tets = int(m[0].group(1)) if m and m[0] else 0
         check(q["face_tet_errors"] == foam_face_tets,
               f"{stem}: the report's faces failing the tet decomposition ({q['face_tet_errors']}) are checkMesh's ({foam_face_tets})")
+        # and its cell determinants ("wellposedness": over each cell's internal faces) as checkMesh
+        # prints them; cells below 0.001 are flagged (motorBike: one buffer cell, now removed)
+        m = re.search(r"Cell determinant \(wellposedness\) : minimum: (\S+) average: (\S+)", rg.stdout)
+        det_min, det_mean = (float(m.group(1)), float(m.group(2))) if m else (None, None)
+        check(m is not None and abs(q["cell_determinant"]["min"] - det_min) <= 1e-9 * max(1.0, det_min) and
+              abs(q["cell_determinant"]["mean"] - det_mean) <= 1e-9 * max(1.0, det_mean),
+              f"{stem}: the report's cell determinant min / mean ({q['cell_determinant']['min']:.12g} / "
+              f"{q['cell_determinant']['mean']:.12g}) are checkMesh's ({det_min} / {det_mean})")
+        m = [re.search(r"number of cells: (\d+)", f) for f in flags if "small determinant" in f]
+        foam_small = int(m[0].group(1)) if m and m[0] else 0
+        check(q["small_determinant_cells"] == foam_small,
+              f"{stem}: the report's cells of small determinant ({q['small_determinant_cells']}) are checkMesh's ({foam_small})")
         if stem in GEOMETRY_OK:
             check(rg.returncode == 0 and "Mesh OK" in rg.stdout and not flags,
                   f"{stem}: checkMesh -allGeometry: Mesh OK (flags: {flags})")

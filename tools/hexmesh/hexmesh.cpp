@@ -585,7 +585,8 @@ int main(int argc, char** argv)
     // the bulged ones are kept apart and swapped into `mesh` where needed: a copy of the whole
     // mesh took 20 MB more at the peak on motorBike)
     std::vector<K::Point_3> bulged;
-    std::size_t foam_concave = 0, foam_face_tets = 0;
+    std::size_t foam_concave = 0, foam_face_tets = 0, foam_small_determinant = 0;
+    HM::Mesh_quality::Range foam_determinant;
     {
       const auto x = HM::IO::internal::foam_points(mesh, HM::IO::default_hanging_bulge, &pm,
                                                    HM::IO::default_max_hanging_bulge, &foam_concave);
@@ -594,6 +595,12 @@ int main(int argc, char** argv)
         g.compute_cells(x, pm);   // (the faces' geometry is not kept: a memory peak)
         const std::vector<char> ft = HM::face_tet_errors(x, pm, g);
         foam_face_tets = std::size_t(std::count(ft.begin(), ft.end(), char(1)));
+      }
+      {
+        const std::vector<double> det = HM::cell_determinants(x, pm);
+        foam_small_determinant = std::size_t(std::count_if(det.begin(), det.end(), [](double d) {
+          return d < HM::openfoam_min_cell_determinant; }));
+        foam_determinant = HM::Mesh_quality::range(det);
       }
       if(foam_output && mesh.has_hanging_nodes()) {   // (after the geometry is freed: a memory peak)
         bulged.reserve(x.size());
@@ -626,6 +633,8 @@ int main(int argc, char** argv)
       // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
       jquality["concave_cells"] = foam_concave;
       jquality["face_tet_errors"] = foam_face_tets;
+      jquality["cell_determinant"] = {{"min", foam_determinant.min}, {"mean", foam_determinant.mean}};   // checkMesh's "wellposedness"
+      jquality["small_determinant_cells"] = foam_small_determinant;   // checkMesh: "Cells with small determinant (< 0.001)"
     }
     for(auto* v : {&q.aspect_ratio, &q.non_orthogonality, &q.skewness, &q.cell_volume, &q.face_warpage})
       std::vector<double>().swap(*v);   // the VTU and the HTML report still need the scaled Jacobian

@@ -401,6 +401,64 @@ struct Mesh_quality
   std::size_t number_of_concave_cells() const { return std::size_t(std::count(concave.begin(), concave.end(), char(1))); }
 };
 
+namespace internal {
+// OpenFOAM's cell determinant (`cellDeterminant()` of OpenCFD's primitiveMeshTools, as
+// `checkMesh -allGeometry` prints it, "wellposedness"): over the cell's internal faces only, the
+// tensor sum of (A/a)(A/a)^T, A a face's area vector, a the mean of |A| over those faces; the
+// determinant of that sum / 8 (1 for a cube with six internal faces; 0 for a cell with none).
+// `area(f)` gives face f's area vector.
+template <typename FaceArea>
+std::vector<double> cell_determinants(const Polyhedral_mesh_3& pm, const FaceArea& area)
+{
+  std::vector<std::uint32_t> start, faces;
+  cell_faces(pm, start, faces);
+  const std::size_t ni = pm.neighbour.size();
+  std::vector<double> det(pm.number_of_cells, 0.0);
+  for(std::size_t c = 0; c < pm.number_of_cells; ++c) {
+    double t[6] = {0, 0, 0, 0, 0, 0}, sum = 0;   // xx xy xz yy yz zz of the raw A A^T
+    std::size_t n = 0;
+    for(std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
+      const std::size_t f = faces[k];
+      if(f >= ni) continue;
+      const Vec3 a = area(f);
+      sum += std::sqrt(dot(a, a));
+      ++n;
+      t[0] += a[0] * a[0]; t[1] += a[0] * a[1]; t[2] += a[0] * a[2];
+      t[3] += a[1] * a[1]; t[4] += a[1] * a[2]; t[5] += a[2] * a[2];
+    }
+    if(n == 0 || !(sum > 0)) continue;
+    const double avg = sum / double(n), s2 = 1.0 / (avg * avg);
+    for(double& x : t) x *= s2;
+    const double d = t[0] * (t[3] * t[5] - t[4] * t[4]) - t[1] * (t[1] * t[5] - t[4] * t[2]) +
+                     t[2] * (t[1] * t[4] - t[3] * t[2]);
+    det[c] = std::abs(d) / 8.0;
+  }
+  return det;
+}
+} // namespace internal
+
+/// checkMesh -allGeometry's threshold on the cell determinant ("Cells with small determinant")
+constexpr double openfoam_min_cell_determinant = 0.001;
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief OpenFOAM's cell determinant of each cell of `pm` (`checkMesh -allGeometry`'s
+ * "wellposedness"): over the cell's internal faces only, the determinant of the sum of
+ * (A/a)(A/a)^T, A a face's area vector and a the mean of their lengths, divided by 8: 1 for a
+ * cube with six internal faces, 0 for a cell with no internal face or with all of them parallel.
+ * checkMesh flags the cells below `openfoam_min_cell_determinant` (0.001). The face areas are
+ * computed on `points` as OpenFOAM does.
+ */
+template <typename Point_3>
+std::vector<double> cell_determinants(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm)
+{
+  return internal::cell_determinants(pm, [&](std::size_t f) {
+    internal::Vec3 c, a;
+    OpenFOAM_geometry::face_centre_and_area(points, pm.faces[f], c, a);
+    return a;
+  });
+}
+
 /*!
  * \ingroup PkgHexMeshing3Quality
  * \brief the warpage of each face of `pm`, in degrees: 0 for a planar convex face.

@@ -564,16 +564,22 @@ public:
       // both; what they leave goes)
       if(extra.empty() && opt.remove_foam_faults) {
         std::vector<char> concave, tets;
+        std::vector<double> dets;
         {
           const auto x = IO::internal::foam_points(m, IO::default_hanging_bulge, &pm, IO::default_max_hanging_bulge);
           OpenFOAM_geometry gx;
           gx.compute(x, pm);
           concave = concave_cells(pm, gx);
           tets = face_tet_errors(x, pm, gx);
+          dets = cell_determinants(pm, [&](std::size_t f) { return gx.face_areas[f]; });
         }
+        // and the cells whose determinant checkMesh finds small (few internal faces, or nearly
+        // parallel ones: a buffer cell wedged between two parts of the boundary; motorBike: one)
+        for(std::size_t c = 0; c < dets.size(); ++c)
+          if(dets[c] < openfoam_min_cell_determinant) concave[c] = 2;
         if(!foam_checked) {   // what checkMesh -allGeometry would find without the removal
           foam_checked = true;
-          foam_faults_found = std::size_t(std::count(concave.begin(), concave.end(), char(1))) +
+          foam_faults_found = std::size_t(std::count_if(concave.begin(), concave.end(), [](char x) { return x != 0; })) +
                               std::size_t(std::count(tets.begin(), tets.end(), char(1)));
         }
         for(std::size_t c = first; c < concave.size(); ++c) if(concave[c]) extra.push_back(Index(c));
