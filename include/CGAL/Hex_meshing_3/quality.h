@@ -407,6 +407,16 @@ namespace internal {
 // tensor sum of (A/a)(A/a)^T, A a face's area vector, a the mean of |A| over those faces; the
 // determinant of that sum / 8 (1 for a cube with six internal faces; 0 for a cell with none).
 // `area(f)` gives face f's area vector.
+// ... from the sums over a cell's internal faces of A A^T (`t`: xx xy xz yy yz zz), of |A| and of 1
+inline double area_tensor_determinant(double t[6], double sum, std::size_t n)
+{
+  if(n == 0 || !(sum > 0)) return 0;
+  const double avg = sum / double(n), s2 = 1.0 / (avg * avg);
+  for(int i = 0; i < 6; ++i) t[i] *= s2;
+  const double d = t[0] * (t[3] * t[5] - t[4] * t[4]) - t[1] * (t[1] * t[5] - t[4] * t[2]) +
+                   t[2] * (t[1] * t[4] - t[3] * t[2]);
+  return std::abs(d) / 8.0;
+}
 template <typename FaceArea>
 std::vector<double> cell_determinants(const Polyhedral_mesh_3& pm, const FaceArea& area)
 {
@@ -426,12 +436,7 @@ std::vector<double> cell_determinants(const Polyhedral_mesh_3& pm, const FaceAre
       t[0] += a[0] * a[0]; t[1] += a[0] * a[1]; t[2] += a[0] * a[2];
       t[3] += a[1] * a[1]; t[4] += a[1] * a[2]; t[5] += a[2] * a[2];
     }
-    if(n == 0 || !(sum > 0)) continue;
-    const double avg = sum / double(n), s2 = 1.0 / (avg * avg);
-    for(double& x : t) x *= s2;
-    const double d = t[0] * (t[3] * t[5] - t[4] * t[4]) - t[1] * (t[1] * t[5] - t[4] * t[2]) +
-                     t[2] * (t[1] * t[4] - t[3] * t[2]);
-    det[c] = std::abs(d) / 8.0;
+    det[c] = area_tensor_determinant(t, sum, n);
   }
   return det;
 }
