@@ -316,7 +316,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // foam_fault_cells`; their staircase faces become the boundary there). The first capture
     // removes them; the retries do not (another choice of paths may leave no such fault, with no
     // cell removed), and a retry kept runs once more with the removal if it has faults.
-    copt.remove_foam_faults = true;
+    // (`copt.remove_foam_faults`: true by default)
     std::unique_ptr<HexMesh> grid;
     if(may_retry) grid = std::make_unique<HexMesh>(out);
     const Hex_meshing_3::Meshing_statistics stats0 = stats;
@@ -337,7 +337,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // a minimum of 0.032 -> 0.035; elephant, diagonal / 40 at the surface, --thin-cells 5: 47
     // cells, 5.7 s -> 26 s for 0.176 -> 0.192). Where they helped, the first capture left 1 to 8
     // (bunny 8: 0.176 -> 0.304; fandisk_crack 2, anchor 1 at 0.75 times the test sizes). Its
-    // faults are still removed (the capture runs once more with the removal).
+    // faults are still removed (by the first capture itself).
     const std::size_t max_low_cells = 10;
     if(ran && may_retry) {
       // the first capture's faults: those its removal found (as `faults()` counts them on the

@@ -407,12 +407,20 @@ namespace internal {
 // tensor sum of (A/a)(A/a)^T, A a face's area vector, a the mean of |A| over those faces; the
 // determinant of that sum / 8 (1 for a cube with six internal faces; 0 for a cell with none).
 // `area(f)` gives face f's area vector.
-// ... from the sums over a cell's internal faces of A A^T (`t`: xx xy xz yy yz zz), of |A| and of 1
-inline double area_tensor_determinant(double t[6], double sum, std::size_t n)
+// The sums over a cell's internal faces: of A A^T (xx xy xz yy yz zz), of |A| and of 1
+typedef std::array<double, 8> Area_tensor_sum;
+inline void add_face_area(Area_tensor_sum& s, const Vec3& a)
 {
-  if(n == 0 || !(sum > 0)) return 0;
-  const double avg = sum / double(n), s2 = 1.0 / (avg * avg);
-  for(int i = 0; i < 6; ++i) t[i] *= s2;
+  s[0] += a[0] * a[0]; s[1] += a[0] * a[1]; s[2] += a[0] * a[2];
+  s[3] += a[1] * a[1]; s[4] += a[1] * a[2]; s[5] += a[2] * a[2];
+  s[6] += std::sqrt(dot(a, a)); s[7] += 1;
+}
+// ... and the cell's determinant from them
+inline double area_tensor_determinant(Area_tensor_sum t)
+{
+  if(t[7] == 0 || !(t[6] > 0)) return 0;
+  const double avg = t[6] / t[7], s2 = 1.0 / (avg * avg);
+  for(int i = 0; i < 6; ++i) t[std::size_t(i)] *= s2;
   const double d = t[0] * (t[3] * t[5] - t[4] * t[4]) - t[1] * (t[1] * t[5] - t[4] * t[2]) +
                    t[2] * (t[1] * t[4] - t[3] * t[2]);
   return std::abs(d) / 8.0;
@@ -425,18 +433,10 @@ std::vector<double> cell_determinants(const Polyhedral_mesh_3& pm, const FaceAre
   const std::size_t ni = pm.neighbour.size();
   std::vector<double> det(pm.number_of_cells, 0.0);
   for(std::size_t c = 0; c < pm.number_of_cells; ++c) {
-    double t[6] = {0, 0, 0, 0, 0, 0}, sum = 0;   // xx xy xz yy yz zz of the raw A A^T
-    std::size_t n = 0;
-    for(std::uint32_t k = start[c]; k < start[c + 1]; ++k) {
-      const std::size_t f = faces[k];
-      if(f >= ni) continue;
-      const Vec3 a = area(f);
-      sum += std::sqrt(dot(a, a));
-      ++n;
-      t[0] += a[0] * a[0]; t[1] += a[0] * a[1]; t[2] += a[0] * a[2];
-      t[3] += a[1] * a[1]; t[4] += a[1] * a[2]; t[5] += a[2] * a[2];
-    }
-    det[c] = area_tensor_determinant(t, sum, n);
+    Area_tensor_sum t{{0, 0, 0, 0, 0, 0, 0, 0}};
+    for(std::uint32_t k = start[c]; k < start[c + 1]; ++k)
+      if(faces[k] < ni) add_face_area(t, area(faces[k]));
+    det[c] = area_tensor_determinant(t);
   }
   return det;
 }

@@ -573,21 +573,13 @@ public:
           // and the cells whose determinant checkMesh finds small (`cell_determinants()`: few
           // internal faces, or nearly parallel ones; motorBike: one buffer cell), the buffer's
           // only (sums per buffer cell over the internal faces: less memory than all cells' faces)
-          std::vector<std::array<double, 8>> acc(concave.size() - (std::min)(concave.size(), std::size_t(first)),
-                                                 std::array<double, 8>{{0, 0, 0, 0, 0, 0, 0, 0}});
-          for(std::size_t f = 0; f < pm.neighbour.size(); ++f) {
-            const Vec3& a = gx.face_areas[f];
-            for(const std::size_t c : {std::size_t(pm.owner[f]), std::size_t(pm.neighbour[f])}) {
-              if(c < first) continue;
-              auto& s = acc[c - first];
-              s[0] += a[0] * a[0]; s[1] += a[0] * a[1]; s[2] += a[0] * a[2];
-              s[3] += a[1] * a[1]; s[4] += a[1] * a[2]; s[5] += a[2] * a[2];
-              s[6] += norm(a); s[7] += 1;
-            }
-          }
+          std::vector<Area_tensor_sum> acc(concave.size() - (std::min)(concave.size(), std::size_t(first)),
+                                           Area_tensor_sum{{0, 0, 0, 0, 0, 0, 0, 0}});
+          for(std::size_t f = 0; f < pm.neighbour.size(); ++f)
+            for(const std::size_t c : {std::size_t(pm.owner[f]), std::size_t(pm.neighbour[f])})
+              if(c >= first) add_face_area(acc[c - first], gx.face_areas[f]);
           for(std::size_t i = 0; i < acc.size(); ++i)
-            if(area_tensor_determinant(acc[i].data(), acc[i][6], std::size_t(acc[i][7])) < openfoam_min_cell_determinant)
-              concave[first + i] = 2;
+            if(area_tensor_determinant(acc[i]) < openfoam_min_cell_determinant) concave[first + i] = 2;
         }
         if(!foam_checked) {   // what checkMesh -allGeometry would find without the removal
           foam_checked = true;
