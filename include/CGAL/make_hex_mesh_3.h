@@ -291,14 +291,15 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       return std::make_pair(below, worst);
     };
     // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
-    // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets),
+    // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets,
+    // before the writer's node-by-node step, as the capture's removal sees them),
     // cells below 0.3, the minimum scaled Jacobian (negated)
     auto faults = [&](const HexMesh& mesh) {
       Hex_meshing_3::Polyhedral_mesh_3 pm;
       pm.build(mesh);
       std::size_t concave = 0;
       const auto x = Hex_meshing_3::IO::internal::foam_points(mesh, Hex_meshing_3::IO::default_hanging_bulge, &pm,
-                                                              Hex_meshing_3::IO::default_max_hanging_bulge, &concave);
+                                                              Hex_meshing_3::IO::default_max_hanging_bulge, &concave, false);
       Hex_meshing_3::OpenFOAM_geometry g;
       g.compute_cells(x, pm);
       const std::vector<char> ft = Hex_meshing_3::face_tet_errors(x, pm, g);

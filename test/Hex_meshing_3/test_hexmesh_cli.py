@@ -158,6 +158,22 @@ def mesh_case(args, name, extra, label):
     return work, rep, out
 
 
+def write_two_cubes(path, gap):
+    """two unit cubes, one over the other, `gap` apart (OFF, outward triangles)"""
+    V, T = [], []
+    for z0 in (0.03, 1.03 + gap):
+        lo, hi = (0.03, 0.03, z0), (1.03, 1.03, z0 + 1)
+        o = len(V)
+        V += [(x, y, z) for z in (lo[2], hi[2]) for y in (lo[1], hi[1]) for x in (lo[0], hi[0])]
+        # corners: bit 0 x, bit 1 y, bit 2 z
+        for a, b, c, d in ((0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (1, 3, 7, 5), (0, 4, 6, 2)):
+            T += [(o + a, o + b, o + c), (o + a, o + c, o + d)]
+    with open(path, "w") as f:
+        f.write(f"OFF\n{len(V)} {len(T)} 0\n")
+        f.writelines(f"{x} {y} {z}\n" for x, y, z in V)
+        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in T)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--hexmesh", required=True)
@@ -207,6 +223,35 @@ def main():
         check(re.search(r"Number of regions: 1 \(OK\)", out) is not None, "a seeded region is one region (checkMesh)")
         for p in ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax", "eight"]:
             check(re.search(r"^\s+%s\s+[1-9]\d*\s" % p, out, re.M) is not None, f"patch {p} has faces")
+
+    # A seeded region's gap 2.5 cells wide between two bodies: trimming keeps the plate of grid
+    # cells in it (kept neighbours along two axes), and the buffer cells on both sides make it a
+    # channel of three cells. (Before, the plate went as a "plate one cell thick" and the mesh
+    # closed the gap as if the two bodies were one: no cell in it; 0.35 apart, it had room already.)
+    print("[gap between two bodies]")
+    two_cubes = os.path.join(args.work, "two_cubes_gap.off")
+    write_two_cubes(two_cubes, 0.25)
+    res = mesh_case(args, two_cubes, ["--box", "-0.5,-0.5,-0.5,1.6,1.6,2.9", "--size", "0.2", "--surface-size", "0.1",
+                                      "--region", "seed:-0.3,-0.3,-0.3"], "two_cubes_gap")
+    if res:
+        import meshio
+        import numpy as np
+        work, rep, out = res
+        check("Mesh OK" in out, "two cubes 0.25 apart: checkMesh -allGeometry -allTopology: Mesh OK")
+        vm = meshio.read(os.path.join(work, "mesh.vtu"))
+        c = vm.points[vm.cells_dict["hexahedron"]].mean(axis=1)
+        inner = (c[:, 0] > 0.2) & (c[:, 0] < 0.86) & (c[:, 1] > 0.2) & (c[:, 1] < 0.86)
+        in_gap = inner & (c[:, 2] > 1.03) & (c[:, 2] < 1.28)
+        # a column through the middle of the gap: the plate's cell and a buffer cell on each side
+        column = in_gap & (np.abs(c[:, 0] - 0.53) < 0.05) & (np.abs(c[:, 1] - 0.53) < 0.05)
+        layers = np.unique(np.round(c[column, 2], 3))
+        check(in_gap.sum() >= 100 and len(layers) >= 3,
+              f"two cubes 0.25 apart: {in_gap.sum()} cells in the gap (>= 100), {len(layers)} layers across it at its middle (>= 3)")
+        # the channel's walls are the cubes' faces: every boundary vertex between them is on one
+        b = np.unique(vm.cells_dict["hexahedron"][in_gap].ravel())
+        z = vm.points[b, 2]
+        walls = np.minimum(np.abs(z - 1.03), np.abs(z - 1.28))
+        check(walls.min() < 1e-9, f"the gap's cells reach its walls (closest {walls.min():.2g})")
 
     # cells between levels: with n = 3, no cell of level <= l-2 comes within 3 cells of level l-1 of
     # the level-(l-1) box (the parent) of a cell of level l; the plain 2:1 balance breaks that rule

@@ -106,7 +106,7 @@ struct Meshing_statistics
   std::size_t cut_leaves = 0;          ///< of which cut by the surface
   std::size_t balance_splits = 0;      ///< cells split by the 2:1 balance
   std::size_t components = 0;          ///< connected components of uncut leaves
-  std::size_t trimmed_cells = 0;       ///< kept cells removed by trimming (one cell thick)
+  std::size_t trimmed_cells = 0;       ///< kept cells removed by trimming (one cell thick; in a seeded region body-fitted, plates stay)
   std::size_t disconnected_cells = 0;  ///< seeded region: cells cut off from the seed by trimming
   std::size_t kept_cells = 0;          ///< cells of the mesh
   int max_level_reached = 0;           ///< the finest level of the grid

@@ -60,11 +60,14 @@ inline void foam_header(std::ostream& os, const char* cls, const char* location,
 // neighbours' faces and makes more cells concave than it cures (anchor 491 -> 337 -> 636 over
 // four rounds, against 491 -> 130 uniformly). A node stops rising where a cell it is a corner of
 // would fall below min(its scaled Jacobian at `bulge`, max(0.3, the mesh's minimum)): the mesh's
-// minimum scaled Jacobian never falls. The points with the fewest concave cells are returned; `concave`, if
-// given, receives their count. Without `pm`: the uniform `bulge`, no count.
+// minimum scaled Jacobian never falls. With `node_by_node`, the hanging nodes of the cells still
+// concave then try every level one at a time (below). The points with the fewest concave cells
+// are returned; `concave`, if given, receives their count. Without `pm`: the uniform `bulge`, no
+// count.
 template <typename HexMesh>
 std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge, const Polyhedral_mesh_3* pm = nullptr,
-                                               double max_bulge = default_max_hanging_bulge, std::size_t* concave = nullptr)
+                                               double max_bulge = default_max_hanging_bulge, std::size_t* concave = nullptr,
+                                               bool node_by_node = true)
 {
   typedef std::array<double, 3> P3;
   std::vector<P3> x(mesh.points.size());
@@ -228,6 +231,53 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
       if(n < best_count) { best_count = n; best = y; best_b = b; }
     }
   }
+  // What is left: each concave cell's own hanging nodes, those on a boundary face too, try the
+  // other levels one at a time (none, and up to 2.5 x max_bulge), a change kept if it lowers the
+  // count and no cell at the node falls below min(its floor, max(0.2, the mesh's minimum)):
+  // validity for OpenFOAM before quality, and still no new minimum. (motorBike: a grid cell's face
+  // split in four, its centre node on the boundary where a buffer cell was removed, whose fine
+  // cells fell below 0.3 for any rise; the capture cannot remove a grid cell.)
+  if(best_count > 0 && node_by_node) {
+    y = best;
+    b = best_b;
+    count_from_scratch(y);
+    std::vector<std::uint32_t> hanging_index(x.size(), std::uint32_t(-1));
+    for(std::size_t i = 0; i < nh; ++i) hanging_index[mesh.hanging_nodes[i].vertex] = std::uint32_t(i);
+    std::vector<double> levels{0.0};
+    for(double l = bulge; l <= 2.5 * max_bulge * (1 + 1e-12); l *= 1.5) levels.push_back(l);
+    std::vector<std::size_t> nodes, one(1);
+    for(int round = 0; round < 4 && nconcave > 0; ++round) {
+      const std::size_t before = nconcave;
+      nodes.clear();
+      for(std::size_t c = 0; c < cflag.size(); ++c)
+        if(cflag[c])
+          for(std::size_t k = cstart[c]; k < cstart[c + 1]; ++k)
+            for(auto v : pm->faces[cfaces[k]])
+              if(hanging_index[v] != std::uint32_t(-1)) nodes.push_back(hanging_index[v]);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      for(std::size_t i : nodes) {
+        if(unit[i][0] == 0 && unit[i][1] == 0 && unit[i][2] == 0) continue;
+        one[0] = i;
+        const std::size_t hv = mesh.hanging_nodes[i].vertex;
+        for(double level : levels) {
+          const double old = b[i];
+          if(level == old) continue;
+          const std::size_t n0 = nconcave;
+          b[i] = level;
+          place(i);
+          bool ok = true;
+          for(std::size_t k = start[hv]; k < start[hv + 1] && ok; ++k) ok = sj(cells[k]) >= (std::min)(floor_sj[cells[k]], (std::max)(0.2, mesh_min));
+          if(ok && count_after(y, one) < n0) continue;   // kept (the next level starts from here)
+          b[i] = old;
+          place(i);
+          if(ok) count_after(y, one);
+        }
+      }
+      if(nconcave >= before) break;
+    }
+    if(nconcave < best_count) { best_count = nconcave; best = y; }
+  }
   if(concave) *concave = best_count;
   return best;
 }
@@ -257,8 +307,9 @@ inline std::string foam_word(const std::string& s)
  * the bulge of the hanging nodes inside the mesh rises (face nodes first, then edge nodes, each
  * kind alike) up to `default_max_hanging_bulge`
  * (nodes on the boundary keep `hanging_bulge`; no cell's scaled Jacobian falls below
- * min(its own, max(0.3, the mesh's minimum))): see `internal::foam_points()`. 0 writes the points
- * as they are.
+ * min(its own, max(0.3, the mesh's minimum))); then the hanging nodes of the cells still concave,
+ * those on the boundary too, try each level one at a time (no cell below min(its own, max(0.2,
+ * the mesh's minimum))): see `internal::foam_points()`. 0 writes the points as they are.
  * \return `false` if a file cannot be written
  */
 template <typename HexMesh>

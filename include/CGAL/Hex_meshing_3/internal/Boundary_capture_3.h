@@ -565,7 +565,9 @@ public:
       if(extra.empty() && opt.remove_foam_faults) {
         std::vector<char> concave, tets;
         {
-          const auto x = IO::internal::foam_points(m, IO::default_hanging_bulge, &pm, IO::default_max_hanging_bulge);
+          // (the rounds only: the node-by-node step after them is the writer's, for what the
+          // removal cannot reach, as grid cells)
+          const auto x = IO::internal::foam_points(m, IO::default_hanging_bulge, &pm, IO::default_max_hanging_bulge, nullptr, false);
           OpenFOAM_geometry gx;
           gx.compute(x, pm);
           concave = concave_cells(pm, gx);
