@@ -114,7 +114,8 @@ def fidelity(case, name, work, distance_tool, bike, samples):
     # patches on the two sides of the zero-thickness sheets (our NAME / NAME-shadow pairs)
     shadow = sorted(n for n, a in areas.items() if "-shadow" in n and a > 0)
     return {"mesh_to_input": j["a_to_b"], "input_to_mesh": j["b_to_a"], "mesh_triangles": j["a_triangles"],
-            "ground_left_out_m2": ground, "shadow_patches_with_faces": len(shadow)}
+            "ground_left_out_m2": ground, "shadow_patches_with_faces": len(shadow),
+            "input_to_mesh_parts": j.get("b_to_a_parts", {})}
 
 
 def main():
@@ -218,6 +219,21 @@ def main():
             o, p = results["hexmesh"], s
             print(f"ratios hexmesh / snappyHexMesh: cells {o['checkMesh']['cells'] / p['checkMesh']['cells']:.2f}, "
                   f"time {o['seconds'] / p['seconds']:.2f}, peak memory {o['peak_MiB'] / p['peak_MiB']:.2f}")
+        except (KeyError, TypeError, ZeroDivisionError):
+            pass
+        # where the input is farther from our boundary than from snappy's: the input's parts by
+        # the excess of the summed input->mesh distances (the same samples on both sides)
+        try:
+            po = results["hexmesh"]["fidelity"]["input_to_mesh_parts"]
+            ps = s["fidelity"]["input_to_mesh_parts"]
+            excess = sorted(((po[k]["sum"] - ps[k]["sum"], k) for k in po if k in ps), reverse=True)
+            total_o = sum(v["sum"] for v in po.values())
+            total_s = sum(v["sum"] for v in ps.values())
+            print(f"input->mesh distance summed over the samples: hexmesh {total_o:.1f} m, snappyHexMesh {total_s:.1f} m; "
+                  "the input's parts where ours exceeds snappy's most (sum, mean mm):")
+            for ex, k in excess[:8]:
+                print(f"  {k:32s} +{ex:6.1f}   hexmesh {po[k]['sum']:6.1f} ({1000 * po[k]['sum'] / po[k]['points']:.1f})"
+                      f"   snappyHexMesh {ps[k]['sum']:6.1f} ({1000 * ps[k]['sum'] / ps[k]['points']:.1f})")
         except (KeyError, TypeError, ZeroDivisionError):
             pass
     print(f"results: {os.path.join(work, 'results.json')}")
