@@ -406,7 +406,6 @@ namespace internal {
 // `checkMesh -allGeometry` prints it, "wellposedness"): over the cell's internal faces only, the
 // tensor sum of (A/a)(A/a)^T, A a face's area vector, a the mean of |A| over those faces; the
 // determinant of that sum / 8 (1 for a cube with six internal faces; 0 for a cell with none).
-// `area(f)` gives face f's area vector.
 // The sums over a cell's internal faces: of A A^T (xx xy xz yy yz zz), of |A| and of 1
 typedef std::array<double, 8> Area_tensor_sum;
 inline void add_face_area(Area_tensor_sum& s, const Vec3& a)
@@ -425,6 +424,7 @@ inline double area_tensor_determinant(Area_tensor_sum t)
                    t[2] * (t[1] * t[4] - t[3] * t[2]);
   return std::abs(d) / 8.0;
 }
+// ... of every cell of `pm`, `area(f)` giving face f's area vector
 template <typename FaceArea>
 std::vector<double> cell_determinants(const Polyhedral_mesh_3& pm, const FaceArea& area)
 {

@@ -80,6 +80,7 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
   typedef CGAL::Hex_meshing_3::internal::Vec3 Vec3;
   std::vector<Vec3> fcentre, farea, cc, ca;
   std::vector<std::uint32_t> cstart, cfaces, hstart, hfaces;   // cell -> faces, hanging node -> faces
+  std::vector<std::uint32_t> hanging_index;                    // vertex -> its hanging node (or -1)
   std::vector<char> cflag, fmark, cmark;
   std::size_t nconcave = 0;
   auto face_geometry = [&](const std::vector<P3>& y, std::size_t f) {
@@ -92,7 +93,7 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
     const std::size_t nf = pm->faces.size(), nc = pm->number_of_cells;
     if(cstart.empty()) {
       CGAL::Hex_meshing_3::internal::cell_faces(*pm, cstart, cfaces);
-      std::vector<std::uint32_t> hanging_index(x.size(), std::uint32_t(-1));
+      hanging_index.assign(x.size(), std::uint32_t(-1));
       for(std::size_t i = 0; i < mesh.hanging_nodes.size(); ++i) hanging_index[mesh.hanging_nodes[i].vertex] = std::uint32_t(i);
       hstart.assign(mesh.hanging_nodes.size() + 1, 0);
       for(std::size_t f = 0; f < nf; ++f) for(auto v : pm->faces[f]) if(hanging_index[v] != std::uint32_t(-1)) ++hstart[hanging_index[v] + 1];
@@ -241,8 +242,6 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
     y = best;
     b = best_b;
     count_from_scratch(y);
-    std::vector<std::uint32_t> hanging_index(x.size(), std::uint32_t(-1));
-    for(std::size_t i = 0; i < nh; ++i) hanging_index[mesh.hanging_nodes[i].vertex] = std::uint32_t(i);
     std::vector<double> levels{0.0};
     for(double l = bulge; l <= 2.5 * max_bulge * (1 + 1e-12); l *= 1.5) levels.push_back(l);
     std::vector<std::size_t> nodes, one(1);

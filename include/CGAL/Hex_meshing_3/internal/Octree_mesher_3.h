@@ -972,15 +972,18 @@ public:
       for(std::uint32_t id : work) {
         if(!(m_nodes[id].flags & KEPT)) continue;
         bool axis_ok[3] = {false, false, false};
-        bool finer = false;
-        for(int f = 0; f < 6; ++f)
-          for_each_face_neighbour(id, f, [&](std::uint32_t j) {
-            if(m_nodes[j].flags & KEPT) axis_ok[f / 2] = true;
-            if(m_nodes[j].level > m_nodes[id].level) finer = true;
-          });
+        for(int f = 0; f < 6; ++f) {
+          if(axis_ok[f / 2]) continue;
+          for_each_face_neighbour(id, f, [&](std::uint32_t j) { if(m_nodes[j].flags & KEPT) axis_ok[f / 2] = true; });
+        }
         const int axes = int(axis_ok[0]) + int(axis_ok[1]) + int(axis_ok[2]);
         if(axes == 3) continue;
-        if(m_keep_plates && axes == 2 && !finer) continue;
+        if(m_keep_plates && axes == 2) {   // a plate: kept if no finer leaf is beside it
+          bool finer = false;
+          for(int f = 0; f < 6 && !finer; ++f)
+            for_each_face_neighbour(id, f, [&](std::uint32_t j) { if(m_nodes[j].level > m_nodes[id].level) finer = true; });
+          if(!finer) continue;
+        }
         m_nodes[id].flags &= std::uint8_t(~KEPT);
         ++m_stats.trimmed_cells;
         for(int f = 0; f < 6; ++f)
