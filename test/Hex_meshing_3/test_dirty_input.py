@@ -126,7 +126,10 @@ def box_with_hole(path):
 # the inputs with plates, flanges or necks about two surface cells thick get 5 cells across their
 # thin parts (data/MANIFEST.md)
 THIN = ["--thin-cells", "5"]
-BODY_FITTED_SIZES = {"anchor": THIN, "anchor_dupflip": THIN, "cube_nonmanifold": THIN, "eight": THIN, "fandisk": THIN,
+# anchor's chamfers and fillets at s / 2 (its surface size is 0.025): no boundary face beyond s / 4
+# (3 at s: folded across the chamfer's convex edge, and hanging corners there)
+ANCHOR = THIN + ["--feature-size", "0.0125"]
+BODY_FITTED_SIZES = {"anchor": ANCHOR, "anchor_dupflip": ANCHOR, "cube_nonmanifold": THIN, "eight": THIN, "fandisk": THIN,
                      "fandisk_crack": THIN, "t20_part": THIN}
 # clean closed inputs whose boundary keeps the input's topology at those sizes (the others have
 # parts thinner than two surface cells: rotor's blades, the elephant's trunk and tail)
@@ -149,7 +152,7 @@ NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_no
 # the issue's fidelity goal, every boundary face within 0.25 x surface size of the input (cylinder
 # and eight since the fidelity polish slides the corners of faces standing off the surface: their
 # farthest went from 0.28 and 0.30 to 0.20 and 0.21; it makes moves on both)
-NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"cube", "cylinder", "eight", "fin_slot"}
+NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cylinder", "eight", "fin_slot"}
 FIDELITY_MOVES = {"cylinder", "eight"}
 # some of the files where the polish's joint moves let curve or corner vertices off their feature
 # (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
@@ -173,8 +176,9 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # the files whose first capture left cells below 0.3 or a cell concave for OpenFOAM at those sizes
 # (the others are captured once; elephant-with-holes' first capture reaches 0.315 since the corner
 # rule of the feature chains; teapot and t20_part since feature paths may stray 6 local sizes from
-# their curve where none keeps within 3: bunny's first capture fell to 0.176 then)
-CAPTURE_RETRIED = {"bunny"}
+# their curve where none keeps within 3: bunny's first capture fell to 0.176 then; anchor's with
+# its sharp edges at s / 2 leaves a cell below 0.3, its second reaches 0.317)
+CAPTURE_RETRIED = {"anchor", "anchor_dupflip", "bunny"}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -977,7 +981,7 @@ def main():
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])
             check(same, f"{stem}: boundary has the input's components and Euler characteristic "
                         f"({topo['mesh_boundary']['components']}, {topo['mesh_boundary']['euler_characteristic']})")
-    # (at these sizes: hanging corners on anchor, corners on cube_nonmanifold, folded and bent
+    # (at these sizes: hanging corners on fandisk, corners on cube_nonmanifold, folded and bent
     # faces on fandisk and the organic models)
     check(len(far_causes_verified) >= 3, f"far-face causes confirmed in the VTUs: {far_causes_verified} (at least 3 causes seen)")
     # a crack through a smooth surface is no feature: fandisk_crack's curves are fandisk's (its
