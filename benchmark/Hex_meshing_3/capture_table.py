@@ -45,11 +45,11 @@ TEST = os.path.join(ROOT, "test", "Hex_meshing_3", "test_dirty_input.py")
 
 def test_sizes():
     """BODY_FITTED_SIZES of the tests (file stem -> extra hexmesh options), read from the test's
-    source: its module-level assignments to THIN, ANCHOR and BODY_FITTED_SIZES"""
+    source: its module-level assignments to THIN, ANCHOR, T20 and BODY_FITTED_SIZES"""
     ns = {}
     for node in ast.parse(open(TEST).read()).body:
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
-                and node.targets[0].id in ("THIN", "ANCHOR", "BODY_FITTED_SIZES"):
+                and node.targets[0].id in ("THIN", "ANCHOR", "T20", "BODY_FITTED_SIZES"):
             ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), dict(ns))
     if "BODY_FITTED_SIZES" not in ns:
         sys.exit(f"capture_table.py: no BODY_FITTED_SIZES assignment found in {TEST}")
