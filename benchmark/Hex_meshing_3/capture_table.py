@@ -45,15 +45,19 @@ TEST = os.path.join(ROOT, "test", "Hex_meshing_3", "test_dirty_input.py")
 
 def test_sizes():
     """BODY_FITTED_SIZES of the tests (file stem -> extra hexmesh options), read from the test's
-    source: its module-level assignments to THIN, ANCHOR, T20 and BODY_FITTED_SIZES"""
+    source: its module-level assignments of upper-case names up to BODY_FITTED_SIZES (the option
+    lists it is made of), evaluated as literals and expressions of those names"""
     ns = {}
     for node in ast.parse(open(TEST).read()).body:
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name) \
-                and node.targets[0].id in ("THIN", "ANCHOR", "T20", "BODY_FITTED_SIZES"):
-            ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), dict(ns))
-    if "BODY_FITTED_SIZES" not in ns:
-        sys.exit(f"capture_table.py: no BODY_FITTED_SIZES assignment found in {TEST}")
-    return ns["BODY_FITTED_SIZES"]
+                and node.targets[0].id.isupper():
+            try:
+                ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), {"__builtins__": {}}, dict(ns))
+            except Exception:
+                continue   # (not made of literals and earlier names: not an option list)
+            if node.targets[0].id == "BODY_FITTED_SIZES":
+                return ns["BODY_FITTED_SIZES"]
+    sys.exit(f"capture_table.py: no BODY_FITTED_SIZES assignment found in {TEST}")
 
 
 def default_surface_size(off):
