@@ -45,6 +45,7 @@ BOX_PATCHES = {"hexmesh": "xmin|xmax|ymin|ymax|zmin|zmax",
                "snappyHexMesh": "frontAndBack|inlet|outlet|lowerWall|upperWall"}
 GROUND_PATCH = {"hexmesh": "zmin", "snappyHexMesh": "lowerWall"}
 GROUND_AREA = 20.0 * 8.0   # the box (-5,-4,0)-(15,4,8)
+FINE_SURFACE_SIZE = 0.015625   # the HFINE of --surface-size (snappyHexMesh: level 6)
 
 
 def patch_areas(obj):
@@ -103,8 +104,8 @@ def checkmesh(case):
 def fidelity(case, name, work, distance_tool, bike, samples):
     surf = os.path.join(work, name + "_boundary.obj")
     subprocess.run(["foamToSurface", "-case", case, "-constant", "-tri", surf], capture_output=True, env=ENV)
-    r = subprocess.run([distance_tool, surf, bike, "--exclude", BOX_PATCHES[name], "--samples", str(samples)],
-                       capture_output=True, text=True)
+    r = subprocess.run([distance_tool, surf, bike, "--exclude", BOX_PATCHES[name], "--samples", str(samples),
+                        "--dump", os.path.join(work, name + "_distances")], capture_output=True, text=True)
     if r.returncode != 0:
         return {"error": r.stderr.strip()}
     j = json.loads(r.stdout)
@@ -115,7 +116,8 @@ def fidelity(case, name, work, distance_tool, bike, samples):
     shadow = sorted(n for n, a in areas.items() if "-shadow" in n and a > 0)
     return {"mesh_to_input": j["a_to_b"], "input_to_mesh": j["b_to_a"], "mesh_triangles": j["a_triangles"],
             "ground_left_out_m2": ground, "shadow_patches_with_faces": len(shadow),
-            "input_to_mesh_parts": j.get("b_to_a_parts", {})}
+            "input_to_mesh_parts": j.get("b_to_a_parts", {}),
+            "mesh_to_input_dump": os.path.join(work, name + "_distances_a_to_b.txt")}
 
 
 def main():
@@ -236,6 +238,27 @@ def main():
                       f"   snappyHexMesh {ps[k]['sum']:6.1f} ({1000 * ps[k]['sum'] / ps[k]['points']:.1f})")
         except (KeyError, TypeError, ZeroDivisionError):
             pass
+        # the samples of each boundary farther than a quarter of the finest surface size from the
+        # input, by the input feature nearest to them (within two finest cells): where each stands off
+        try:
+            sys.path.insert(0, HERE)
+            import far_by_feature as fbf
+            loaded = None
+            rows = {}
+            for name in ("hexmesh", "snappyHexMesh"):
+                dump = results[name]["fidelity"]["mesh_to_input_dump"]
+                rows[name], loaded = fbf.far_by_feature(bike, dump, 2 * FINE_SURFACE_SIZE, FINE_SURFACE_SIZE / 4,
+                                                        loaded=loaded)
+                results[name]["fidelity"]["far_by_feature"] = rows[name]
+            print(f"mesh->input samples beyond {FINE_SURFACE_SIZE / 4:g} m, by the input feature nearest within "
+                  f"{2 * FINE_SURFACE_SIZE:g} m (samples, distances summed in m):")
+            for k in fbf.KINDS + ["none"]:
+                print(f"  {k:13s} hexmesh {rows['hexmesh'][k]['samples']:7d} {rows['hexmesh'][k]['sum']:7.1f}"
+                      f"   snappyHexMesh {rows['snappyHexMesh'][k]['samples']:7d} {rows['snappyHexMesh'][k]['sum']:7.1f}")
+            with open(os.path.join(work, "results.json"), "w") as f:
+                json.dump(results, f, indent=1)
+        except (KeyError, TypeError, OSError, ValueError, ImportError) as e:
+            print(f"(no breakdown by feature: {e})")
     print(f"results: {os.path.join(work, 'results.json')}")
 
 
