@@ -990,8 +990,8 @@ def main():
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])
             check(same, f"{stem}: boundary has the input's components and Euler characteristic "
                         f"({topo['mesh_boundary']['components']}, {topo['mesh_boundary']['euler_characteristic']})")
-    # (at these sizes: hanging corners on fandisk, corners on cube_nonmanifold, folded and bent
-    # faces on fandisk and the organic models)
+    # (at these sizes: a hanging corner and corners on fandisk, cap corners on teapot, folded and
+    # bent faces on the organic models)
     check(len(far_causes_verified) >= 3, f"far-face causes confirmed in the VTUs: {far_causes_verified} (at least 3 causes seen)")
     # a crack through a smooth surface is no feature: fandisk_crack's curves are fandisk's (its
     # open edges left are one side of the creases the crack runs along)
