@@ -53,7 +53,7 @@ def test_sizes():
                 and node.targets[0].id.isupper():
             try:
                 ns[node.targets[0].id] = eval(compile(ast.Expression(node.value), TEST, "eval"), {"__builtins__": {}}, dict(ns))
-            except Exception:
+            except (NameError, TypeError, ValueError, KeyError, AttributeError, IndexError):
                 continue   # (not made of literals and earlier names: not an option list)
             if node.targets[0].id == "BODY_FITTED_SIZES":
                 return ns["BODY_FITTED_SIZES"]

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Where a mesh boundary stands off its input: its far samples by the input feature nearest to them.
 
-Reads the input surface (OBJ, optionally .gz, or OFF) and the mesh->input samples that
+Reads the input surface (OBJ, optionally .gz, or plain OFF) and the mesh->input samples that
 `surface_distance --dump PREFIX` writes (PREFIX_a_to_b.txt: x y z distance per line, the mesh
 being the first surface), and sorts the samples farther than --beyond by the kind of the input
 feature edge nearest to them within --radius: a convex or a concave sharp edge (dihedral angle of
@@ -27,28 +27,17 @@ import sys
 
 import numpy as np
 
+import suite  # (its OFF reader; the modules of benchmark/Hex_meshing_3 are imported from there)
+
 KINDS = ["convex", "concave", "open", "non_manifold"]
 
 
 def read_surface(path):
-    """vertices (n, 3), triangles (m, 3) and each triangle's part (m,)"""
+    """vertices (n, 3), triangles (m, 3) and each triangle's part (m,) of an OFF or OBJ (.gz) file"""
+    if path.endswith(".off"):
+        pts, tris = suite.read_off(path)
+        return np.array(pts, float), np.array(tris, int), np.zeros(len(tris), int)
     opener = gzip.open if path.endswith(".gz") else open
-    if path.endswith(".off") or path.endswith(".off.gz"):
-        with opener(path, "rt") as f:
-            t = " ".join(line.split("#")[0] for line in f).split()
-        i = 1 if t[0] == "OFF" else 0
-        nv, nf = int(t[i]), int(t[i + 1])
-        i += 3
-        V = np.array(t[i:i + 3 * nv], float).reshape(-1, 3)
-        i += 3 * nv
-        T = []
-        for _ in range(nf):
-            k = int(t[i])
-            f = [int(x) for x in t[i + 1:i + 1 + k]]
-            T += [(f[0], f[j], f[j + 1]) for j in range(1, k - 1)]
-            i += 1 + k
-        T = np.array(T, int)
-        return V, T, np.zeros(len(T), int)
     V, T, P, names = [], [], [], {}
     part = 0
     with opener(path, "rt") as f:

@@ -31,6 +31,9 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import far_by_feature  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 sys.path.insert(0, HERE)
@@ -186,6 +189,15 @@ def main():
             snappy["fidelity"] = fidelity(case, "snappyHexMesh", work, args.surface_distance, bike, args.samples)
         results["snappyHexMesh"] = snappy
 
+    # each boundary's samples farther than a quarter of the finest surface size from the input, by
+    # the input feature nearest to them (within two finest cells): where each stands off (the
+    # input's features found once for both)
+    features = None
+    for name in ("hexmesh", "snappyHexMesh"):
+        fid = results.get(name, {}).get("fidelity", {})
+        if "mesh_to_input_dump" in fid:
+            fid["far_by_feature"], features = far_by_feature.far_by_feature(
+                bike, fid["mesh_to_input_dump"], 2 * FINE_SURFACE_SIZE, FINE_SURFACE_SIZE / 4, loaded=features)
     json.dump(results, open(os.path.join(work, "results.json"), "w"), indent=1)
     # the table
     names = [n for n in ("hexmesh", "snappyHexMesh") if n in results]
@@ -238,27 +250,14 @@ def main():
                       f"   snappyHexMesh {ps[k]['sum']:6.1f} ({1000 * ps[k]['sum'] / ps[k]['points']:.1f})")
         except (KeyError, TypeError, ZeroDivisionError):
             pass
-        # the samples of each boundary farther than a quarter of the finest surface size from the
-        # input, by the input feature nearest to them (within two finest cells): where each stands off
-        try:
-            sys.path.insert(0, HERE)
-            import far_by_feature as fbf
-            loaded = None
-            rows = {}
-            for name in ("hexmesh", "snappyHexMesh"):
-                dump = results[name]["fidelity"]["mesh_to_input_dump"]
-                rows[name], loaded = fbf.far_by_feature(bike, dump, 2 * FINE_SURFACE_SIZE, FINE_SURFACE_SIZE / 4,
-                                                        loaded=loaded)
-                results[name]["fidelity"]["far_by_feature"] = rows[name]
+        # where each boundary stands off (computed before results.json is written)
+        if all("far_by_feature" in results[n].get("fidelity", {}) for n in ("hexmesh", "snappyHexMesh")):
+            fo, fs = results["hexmesh"]["fidelity"]["far_by_feature"], s["fidelity"]["far_by_feature"]
             print(f"mesh->input samples beyond {FINE_SURFACE_SIZE / 4:g} m, by the input feature nearest within "
                   f"{2 * FINE_SURFACE_SIZE:g} m (samples, distances summed in m):")
-            for k in fbf.KINDS + ["none"]:
-                print(f"  {k:13s} hexmesh {rows['hexmesh'][k]['samples']:7d} {rows['hexmesh'][k]['sum']:7.1f}"
-                      f"   snappyHexMesh {rows['snappyHexMesh'][k]['samples']:7d} {rows['snappyHexMesh'][k]['sum']:7.1f}")
-            with open(os.path.join(work, "results.json"), "w") as f:
-                json.dump(results, f, indent=1)
-        except (KeyError, TypeError, OSError, ValueError, ImportError) as e:
-            print(f"(no breakdown by feature: {e})")
+            for k in far_by_feature.KINDS + ["none"]:
+                print(f"  {k:13s} hexmesh {fo[k]['samples']:7d} {fo[k]['sum']:7.1f}"
+                      f"   snappyHexMesh {fs[k]['samples']:7d} {fs[k]['sum']:7.1f}")
     print(f"results: {os.path.join(work, 'results.json')}")
 
 
