@@ -191,8 +191,8 @@ def main():
         ("eight.off", ["--staircase"], "eight_staircase"),
         ("eight.off", ["--staircase", "--box", "-1,-1,-1,2,1,1", "--size", "0.25", "--surface-size", "0.03",
                        "--region", "seed:-0.9,-0.9,-0.9"], "eight_external_staircase"),
-        ("cube.off", ["--size", "0.3", "--surface-size", "0.075"], "cube"),
-        ("cube.off", ["--size", "0.3", "--surface-size", "0.075", "--feature-pillows"], "cube_pillows"),
+        ("cube.off", ["--size", "0.3", "--surface-size", "0.075", "--no-feature-pillows"], "cube"),
+        ("cube.off", ["--size", "0.3", "--surface-size", "0.075"], "cube_pillows"),
         ("fandisk.off", ["--size", "0.1", "--surface-size", "0.025", "--feature-pillows"], "fandisk_pillows"),
         ("anchor.off", ["--size", "0.12", "--surface-size", "0.03"], "anchor"),
         ("bunny.off", [], "bunny_default"),
@@ -291,16 +291,18 @@ def main():
         check(r1.get("cells_between_levels") == 1 and results["eight_between_3"][1]["options"].get("cells_between_levels") == 3,
               "the report gives the option")
 
-    # feature pillows: a sheet of hexahedra along the convex curves; on the cube every edge is convex,
-    # its chain runs on it, and every corner joins three, so no boundary face has three corners on
-    # an edge: the worst cell is far better than without, and the corners are exact
+    # feature pillows (the default; --no-feature-pillows turns them off): a sheet of hexahedra
+    # along the convex curves; on the cube every edge is convex, its chain runs on it, and every
+    # corner joins three, so no boundary face has three corners on an edge: the worst cell is far
+    # better than without, and the corners are exact
     print("[feature pillows]")
     if "cube" in results and "cube_pillows" in results and "fandisk" in results and "fandisk_pillows" in results:
         plain, pil = results["cube"][1], results["cube_pillows"][1]
         size = pil["fidelity"]["surface_size"]
         check(plain["boundary"].get("pillow_cells") == 0 and pil["boundary"]["pillow_cells"] > 0,
-              f"pillow cells only when asked ({pil['boundary']['pillow_cells']})")
-        check(pil["options"].get("feature_pillows") is True, "the report gives the option")
+              f"pillow cells by default, none with --no-feature-pillows ({pil['boundary']['pillow_cells']})")
+        check(pil["options"].get("feature_pillows") is True and plain["options"].get("feature_pillows") is False,
+              "the report gives the option")
         sj0, sj1 = plain["quality"]["scaled_jacobian"]["min"], pil["quality"]["scaled_jacobian"]["min"]
         check(sj1 >= 0.8 and sj1 > sj0 + 0.1, f"cube: min scaled Jacobian {sj1:.3f} with pillows ({sj0:.3f} without)")
         ff = pil["feature_fidelity"]

@@ -211,7 +211,7 @@ int main(int argc, char** argv)
   std::string box_s, region = "inside", surface_size_s;
   int max_level = 12;
   std::size_t max_cells = 0;
-  bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = false;
+  bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = true;
   std::size_t capture_retry_cells = 200000;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
@@ -258,10 +258,11 @@ int main(int argc, char** argv)
   app.add_option("--max-level", max_level, "most refinement levels below the initial grid")->check(CLI::Range(0, 20));
   app.add_option("--max-cells", max_cells, "stop refining before the grid exceeds this many cells (the mesh stays valid; "
                                            "a warning says so)");
-  app.add_flag("--feature-pillows", feature_pillows, "experimental: a sheet of hexahedra along each convex sharp curve whose "
-                                                  "chain runs within half a cell of it, two boundary faces meeting at the curve");
+  app.add_flag("--feature-pillows,!--no-feature-pillows", feature_pillows, "a sheet of hexahedra along each convex sharp "
+               "curve whose chain runs within half a cell of it, two boundary faces meeting at the curve; where that leaves "
+               "a cell below a scaled Jacobian of 0.3 or a checkMesh fault, the retries run without (default: on)");
   app.add_option("--capture-retry-cells", capture_retry_cells, "where the boundary capture leaves a cell below a scaled "
-                 "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 3 times) with other weights of the feature paths on meshes of at "
+                 "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 4 times: without the feature pillows, then with other weights of the feature paths) on meshes of at "
                  "most this many cells, and the mesh with the fewest checkMesh -allGeometry faults, then cells below 0.3 is "
                  "kept; 0: never (default 200000)");
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");

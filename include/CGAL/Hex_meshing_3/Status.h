@@ -133,7 +133,7 @@ struct Meshing_statistics
   std::size_t polish_patches = 0; ///< the polish's joint moves kept: patches around a cell below 0.3 whose worst cell got better
   std::size_t loosened_vertices = 0;   ///< curve/corner vertices of a cell below 0.3 that left their feature in a joint move kept (surface vertices since, within 0.2 / 0.1 local sizes of their curve / corner); `curve_vertices` and `corner_vertices` still count them
   std::size_t capture_tries = 0;            ///< boundary captures run (see `make_hex_mesh_3()`: more than one where the first left cells below a scaled Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition)
-  std::size_t capture_choice = 0;           ///< the one kept (0: the default weights of the feature paths; 1, 2, 3: their ratio, turn penalty to snap weight, 2.5, 3.75, 1.67 instead of 5)
+  std::size_t capture_choice = 0;           ///< the one kept, in the sequence of captures: with feature pillows if asked (the default), then without, the feature paths' ratio of turn penalty to snap weight 5, then 2.5, 3.75, 1.67 (0: the first capture; where it had pillows, 1 is the default weights without them, else the captures without pillows are not run twice and 1 is the ratio 2.5)
   std::size_t split_warp_repairs = 0;       ///< vertex moves of the repair of warped faces split in four (concave for OpenFOAM)
   std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
   std::size_t non_orthogonal_faces = 0;     ///< faces non-orthogonal beyond 70 degrees found after the repairs (the buffer cells at them removed)
