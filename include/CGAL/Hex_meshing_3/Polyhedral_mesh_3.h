@@ -176,11 +176,12 @@ struct Polyhedral_mesh_3
       return b != bkeys.end() && b->first == k;
     };
 
-    struct Item { Key key; Index cell; Index poly; };
+    // Each polygon is an item: its sorted corners (the key), its cell and how to make its vertex
+    // list again (`code`: the cell's local face x 16 + the part: 0 the whole face, 1-4 a quarter
+    // of a face split in four, 5-8 a half of a 1:2 split), not the list itself (the lists of
+    // every cell's faces, 52 MB on motorBike, were a part of the capture's memory peak)
+    struct Item { Key key; Index cell; std::uint8_t code; };
     std::vector<Item> items;
-    // the polygons, one after the other (`poly_start[i]`: where polygon i starts); a vector per
-    // polygon would cost three times the memory on large meshes
-    std::vector<Index> poly_vertices, poly_start{0};
     // 3 more per face split in four (its centre a hanging node), 1 more per 1:2 split, which
     // takes two edge midpoints, each on the faces of at most 3 coarse cells (reserved so: a
     // reallocation would double them; exceeding the bound only costs that)
@@ -188,22 +189,52 @@ struct Polyhedral_mesh_3
     for(const auto& h : mesh.hanging_nodes) if(h.number_of_masters != 2) ++n4;
     const std::size_t npoly = 6 * mesh.hexahedra.size() + 3 * n4 + 3 * (mesh.hanging_nodes.size() - n4);
     items.reserve(npoly);
-    poly_start.reserve(npoly + 1);
-    poly_vertices.reserve(24 * mesh.hexahedra.size() + 24 * mesh.hanging_nodes.size());
-    auto poly_size = [&](Index i) { return poly_start[i + 1] - poly_start[i]; };
-    // a quad of cell c with, after each corner, the hanging midpoint of the edge it starts (if any)
-    auto add_polygon = [&](const std::array<Index, 4>& q, Index c) {
-      for(int i = 0; i < 4; ++i) {
-        poly_vertices.push_back(q[i]);
-        Index m;
-        if(mid_of(q[i], q[(i + 1) % 4], m)) poly_vertices.push_back(m);
+    // the four quarters of a face split in four at its centre `ctr`, `m` its edge midpoints
+    auto quarters = [](const Index* q, const Index* m, Index ctr) {
+      return std::array<std::array<Index, 4>, 4>{{{{q[0], m[0], ctr, m[3]}}, {{m[0], q[1], m[1], ctr}},
+                                                   {{ctr, m[1], q[2], m[2]}}, {{m[3], ctr, m[2], q[3]}}}};
+    };
+    // the halves of a 1:2 split across the midpoints a, b of edges (p0,p1) and (p2,p3), p the face
+    // rotated by r; both keep the face's orientation
+    auto halves = [](const Index* p, Index a, Index b) {
+      return std::array<std::array<Index, 4>, 2>{{{{p[0], a, b, p[3]}}, {{a, p[1], p[2], b}}}};
+    };
+    // the vertex list of an item's polygon: a quad with, after each corner, the hanging midpoint
+    // of the edge it starts (if any); a quarter as it is
+    auto polygon_of = [&](Index c, std::uint8_t code, std::vector<Index>& out) {
+      out.clear();
+      const auto& h = mesh.hexahedra[c];
+      const auto& f = lf[code >> 4];
+      const int part = code & 15;
+      const Index q[4] = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
+      auto with_midpoints = [&](const std::array<Index, 4>& x) {
+        for(int i = 0; i < 4; ++i) {
+          out.push_back(x[std::size_t(i)]);
+          Index m;
+          if(mid_of(x[std::size_t(i)], x[std::size_t((i + 1) % 4)], m)) out.push_back(m);
+        }
+      };
+      if(part == 0) { with_midpoints({{q[0], q[1], q[2], q[3]}}); return; }
+      if(part <= 4) {
+        Index ctr = 0, m[4] = {0, 0, 0, 0};
+        centre_of(sorted({{q[0], q[1], q[2], q[3]}}), ctr);
+        for(int i = 0; i < 4; ++i) mid_of(q[i], q[(i + 1) % 4], m[i]);
+        const auto s4 = quarters(q, m, ctr)[std::size_t(part - 1)];
+        out.insert(out.end(), s4.begin(), s4.end());
+        return;
       }
-      items.push_back({sorted(q), c, Index(poly_start.size() - 1)});
-      poly_start.push_back(Index(poly_vertices.size()));
+      const int r = (part - 5) / 2;
+      const Index p[4] = {q[r], q[r + 1], q[r + 2], q[(r + 3) % 4]};
+      Index a = 0, b = 0;
+      mid_of(p[0], p[1], a);
+      mid_of(p[2], p[3], b);
+      with_midpoints(halves(p, a, b)[std::size_t((part - 5) % 2)]);
     };
     for(Index c = 0; c < mesh.hexahedra.size(); ++c) {
       const auto& h = mesh.hexahedra[c];
-      for(const auto& f : lf) {
+      for(std::size_t fi = 0; fi < lf.size(); ++fi) {
+        const auto& f = lf[fi];
+        const std::uint8_t face_code = std::uint8_t(fi << 4);
         const Index q[4] = {h[f[0]], h[f[1]], h[f[2]], h[f[3]]};
         Index ctr;
         if(centre_of(sorted({{q[0], q[1], q[2], q[3]}}), ctr)) {
@@ -211,30 +242,24 @@ struct Polyhedral_mesh_3
           for(int i = 0; i < 4; ++i)
             if(!mid_of(q[i], q[(i + 1) % 4], m[i]))
               throw std::logic_error("Polyhedral_mesh_3: a split face lacks an edge midpoint");
-          const std::array<std::array<Index, 4>, 4> sub = {{{{q[0], m[0], ctr, m[3]}}, {{m[0], q[1], m[1], ctr}},
-                                                          {{ctr, m[1], q[2], m[2]}}, {{m[3], ctr, m[2], q[3]}}}};
-          for(const auto& s : sub) {
-            items.push_back({sorted(s), c, Index(poly_start.size() - 1)});
-            poly_vertices.insert(poly_vertices.end(), s.begin(), s.end());
-            poly_start.push_back(Index(poly_vertices.size()));
-          }
+          const auto sub = quarters(q, m, ctr);
+          for(int i = 0; i < 4; ++i) items.push_back({sorted(sub[std::size_t(i)]), c, std::uint8_t(face_code | (1 + i))});
           continue;
         }
-        // 1:2 split across the midpoints of edges (p0,p1) and (p2,p3), p the face rotated by r;
-        // both halves keep the face's orientation
+        // 1:2 split across the midpoints of edges (p0,p1) and (p2,p3), p the face rotated by r
         bool split = false;
         for(int r = 0; r < 2 && !split; ++r) {
           const Index p[4] = {q[r], q[r + 1], q[r + 2], q[(r + 3) % 4]};
           Index a, b;
           if(!mid_of(p[0], p[1], a) || !mid_of(p[2], p[3], b)) continue;
-          const std::array<Index, 4> half0 = {{p[0], a, b, p[3]}}, half1 = {{a, p[1], p[2], b}};
-          if(is_face_beyond(sorted(half0), c) && is_face_beyond(sorted(half1), c)) {
-            add_polygon(half0, c);
-            add_polygon(half1, c);
+          const auto hv = halves(p, a, b);
+          if(is_face_beyond(sorted(hv[0]), c) && is_face_beyond(sorted(hv[1]), c)) {
+            items.push_back({sorted(hv[0]), c, std::uint8_t(face_code | (5 + 2 * r))});
+            items.push_back({sorted(hv[1]), c, std::uint8_t(face_code | (6 + 2 * r))});
             split = true;
           }
         }
-        if(!split) add_polygon({{q[0], q[1], q[2], q[3]}}, c);
+        if(!split) items.push_back({sorted({{q[0], q[1], q[2], q[3]}}), c, face_code});
       }
     }
     std::vector<Index>().swap(vstart);
@@ -242,10 +267,13 @@ struct Polyhedral_mesh_3
     std::sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
       return a.key != b.key ? a.key < b.key : a.cell < b.cell; });
 
-    struct Internal { Index own, nei, poly; };
-    struct Boundary { int patch; Index own, poly; };
+    // a face: its owner, its neighbour (internal faces), whose polygon it takes (`src`, `code`),
+    // reversed (all but its first vertex) or not, and its number of vertices
+    struct Internal { Index own, nei, src; std::uint8_t code, reversed, size; };
+    struct Boundary { int patch; Index own; std::uint8_t code, size; };
     std::vector<Internal> internal;
     std::vector<Boundary> boundary;
+    std::vector<Index> pa, pb;
     for(std::size_t i = 0; i < items.size();) {
       std::size_t j = i + 1;
       while(j < items.size() && items[j].key == items[i].key) ++j;
@@ -253,12 +281,10 @@ struct Polyhedral_mesh_3
         const Item& a = items[i];
         const Item& b = items[i + 1];
         // the owner's polygon, unless the neighbour's lists more vertices (then reversed)
-        Index poly = a.poly;
-        if(poly_size(b.poly) > poly_size(a.poly)) {
-          poly = b.poly;
-          std::reverse(poly_vertices.begin() + poly_start[poly] + 1, poly_vertices.begin() + poly_start[poly + 1]);
-        }
-        internal.push_back({a.cell, b.cell, poly});
+        polygon_of(a.cell, a.code, pa);
+        polygon_of(b.cell, b.code, pb);
+        if(pb.size() > pa.size()) internal.push_back({a.cell, b.cell, b.cell, b.code, 1, std::uint8_t(pb.size())});
+        else internal.push_back({a.cell, b.cell, a.cell, a.code, 0, std::uint8_t(pa.size())});
       } else if(j - i == 1) {
         auto it = std::lower_bound(bkeys.begin(), bkeys.end(), std::make_pair(items[i].key, -1));
         if(it == bkeys.end() || it->first != items[i].key)
@@ -266,7 +292,8 @@ struct Polyhedral_mesh_3
                                  std::to_string(items[i].cell) + ", vertices " + std::to_string(items[i].key[0]) + " " +
                                  std::to_string(items[i].key[1]) + " " + std::to_string(items[i].key[2]) + " " +
                                  std::to_string(items[i].key[3]) + ")");
-        boundary.push_back({it->second, items[i].cell, items[i].poly});
+        polygon_of(items[i].cell, items[i].code, pa);
+        boundary.push_back({it->second, items[i].cell, items[i].code, std::uint8_t(pa.size())});
       } else
         throw std::logic_error("Polyhedral_mesh_3: a face is shared by more than two cells");
       i = j;
@@ -277,17 +304,19 @@ struct Polyhedral_mesh_3
       return a.patch != b.patch ? a.patch < b.patch : a.own < b.own; });
 
     std::vector<Item>().swap(items);
-    auto add_face = [&](Index i) {
-      faces.push_back(poly_vertices.begin() + poly_start[i], poly_vertices.begin() + poly_start[i + 1]);
+    auto add_face = [&](Index src, std::uint8_t code, bool reversed) {
+      polygon_of(src, code, pa);
+      if(reversed) std::reverse(pa.begin() + 1, pa.end());
+      faces.push_back(pa.begin(), pa.end());
     };
     std::size_t nv = 0;
-    for(const Internal& f : internal) nv += poly_size(f.poly);
-    for(const Boundary& f : boundary) nv += poly_size(f.poly);
+    for(const Internal& f : internal) nv += f.size;
+    for(const Boundary& f : boundary) nv += f.size;
     faces.reserve(internal.size() + boundary.size(), nv);
     owner.reserve(internal.size() + boundary.size());
     neighbour.reserve(internal.size());
     for(const Internal& f : internal) {
-      add_face(f.poly); owner.push_back(f.own); neighbour.push_back(f.nei);
+      add_face(f.src, f.code, f.reversed != 0); owner.push_back(f.own); neighbour.push_back(f.nei);
     }
     patches.resize(mesh.patch_names.size());
     for(std::size_t p = 0; p < patches.size(); ++p) patches[p].name = mesh.patch_names[p];
@@ -295,7 +324,7 @@ struct Polyhedral_mesh_3
     for(std::size_t p = 0; p < patches.size(); ++p) {
       patches[p].start = faces.size();
       while(k < boundary.size() && boundary[k].patch == int(p)) {
-        add_face(boundary[k].poly); owner.push_back(boundary[k].own); ++k;
+        add_face(boundary[k].own, boundary[k].code, false); owner.push_back(boundary[k].own); ++k;
       }
       patches[p].size = faces.size() - patches[p].start;
     }

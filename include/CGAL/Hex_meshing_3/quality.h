@@ -161,6 +161,15 @@ struct OpenFOAM_geometry
     internal::foam_face_centre_and_area(F.size(), [&](std::size_t i) { return internal::vec(points[F[i]]); }, centre, area);
   }
 
+  /// the centre and area vector of face `f`: the stored ones after `compute()`, computed from
+  /// `points` after `compute_cells()`
+  template <typename Point_3>
+  void face(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm, std::size_t f, Vec3& centre, Vec3& area) const
+  {
+    if(face_centres.empty()) face_centre_and_area(points, pm.faces[f], centre, area);
+    else { centre = face_centres[f]; area = face_areas[f]; }
+  }
+
   template <typename Point_3>
   void compute(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm)
   {
@@ -269,6 +278,24 @@ inline bool concave_cell(const Polyhedral_mesh_3& pm, std::size_t c, const std::
   }
   return concave_cell(centres, areas);
 }
+
+// the same, the faces' centres and areas from `g` (computed from `points` where `g` holds the
+// cells only: `OpenFOAM_geometry::compute_cells()`)
+template <typename Point_3>
+bool concave_cell(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g,
+                  std::size_t c, const std::vector<std::uint32_t>& start, const std::vector<std::uint32_t>& faces,
+                  std::vector<Vec3>& centres, std::vector<Vec3>& areas)
+{
+  centres.clear(); areas.clear();
+  for(std::size_t i = start[c]; i < start[c + 1]; ++i) {
+    const std::size_t f = faces[i];
+    Vec3 fc, fa;
+    g.face(points, pm, f, fc, fa);
+    centres.push_back(fc);
+    areas.push_back(mul(fa, pm.owner[f] == c ? 1.0 : -1.0));
+  }
+  return concave_cell(centres, areas);
+}
 } // namespace internal
 
 /*!
@@ -292,6 +319,25 @@ inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFO
   std::vector<Vec3> centres, areas;
   for(std::size_t c = 0; c < pm.number_of_cells; ++c)
     concave[c] = concave_cell(pm, c, start, faces, g.face_centres, g.face_areas, centres, areas) ? 1 : 0;
+  return concave;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief `concave_cells()` where `g` may also be the cells-only geometry of
+ * `OpenFOAM_geometry::compute_cells(points, pm)`: the faces' centres and areas are then computed
+ * from `points` where needed (the same values; no array of them, two thirds of the geometry's memory).
+ */
+template <typename Point_3>
+std::vector<char> concave_cells(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g)
+{
+  using namespace internal;
+  std::vector<std::uint32_t> start, faces;
+  cell_faces(pm, start, faces);
+  std::vector<char> concave(pm.number_of_cells, 0);
+  std::vector<Vec3> centres, areas;
+  for(std::size_t c = 0; c < pm.number_of_cells; ++c)
+    concave[c] = concave_cell(points, pm, g, c, start, faces, centres, areas) ? 1 : 0;
   return concave;
 }
 
@@ -483,7 +529,7 @@ std::vector<double> cell_determinants(const std::vector<Point_3>& points, const 
  * of the fan triangles' areas around the same centre (1 for a planar face; checkMesh warns below
  * 0.8), a ratio rather than an angle.
  *
- * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)`.
+ * `g` is the geometry computed by `OpenFOAM_geometry::compute(points, pm)` or `compute_cells(points, pm)`.
  */
 template <typename Point_3>
 std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm,
@@ -491,14 +537,13 @@ std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyh
 {
   using namespace internal;
   const double rad_to_deg = 180.0 / 3.14159265358979323846;
-  CGAL_precondition(g.face_areas.size() == pm.faces.size() && g.face_centres.size() == pm.faces.size());   // `compute()`
   std::vector<double> w(pm.faces.size(), 0.0);
   for(std::size_t f = 0; f < pm.faces.size(); ++f) {
     const auto& F = pm.faces[f];
-    const Vec3& S = g.face_areas[f];
+    Vec3 S, c;
+    g.face(points, pm, f, c, S);
     const double mS = norm(S);
     if(!(mS > 0) || F.size() < 3) continue;
-    const Vec3& c = g.face_centres[f];
     const std::size_t n = F.size();
     double worst = 1.0;   // smallest cosine
     for(std::size_t i = 0; i < n; ++i) {
@@ -517,27 +562,26 @@ std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyh
 namespace internal {
 // OpenFOAM's face non-orthogonality (degrees, internal faces; skipped if `non_orthogonality` is
 // null) and skewness (all faces), from the geometry `g` of the mesh with points `points`
-template <typename PointRange>
-void face_non_orthogonality_and_skewness(const PointRange& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g,
-                                         std::vector<double>* non_orthogonality, std::vector<double>& skewness)
+// `sink(f, non_orthogonality, skewness)` for each face f: OpenFOAM's non-orthogonality (degrees;
+// NaN for a boundary face) and skewness; `g` from `compute()` or `compute_cells()` (then the
+// faces' centres and areas are computed from `points`)
+template <typename Point_3, typename Sink>
+void for_each_face_non_orthogonality_and_skewness(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm,
+                                                  const OpenFOAM_geometry& g, const Sink& sink)
 {
   const std::size_t ni = pm.neighbour.size();
-  CGAL_precondition(g.face_areas.size() == pm.faces.size() && g.face_centres.size() == pm.faces.size());   // `compute()`
   const double ROOTVSMALL = 1.0e-150, VSMALL = 1.0e-300;
-  if(non_orthogonality) non_orthogonality->resize(ni);
-  skewness.resize(pm.faces.size());
   for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-    const Vec3& S = g.face_areas[f];
-    const Vec3& Cf = g.face_centres[f];
+    Vec3 S, Cf;
+    g.face(points, pm, f, Cf, S);
     const Vec3& Co = g.cell_centres[pm.owner[f]];
     const Vec3 Cpf = sub(Cf, Co);
-    Vec3 d; double fd0;
+    Vec3 d;
+    double fd0, non_orthogonality = std::numeric_limits<double>::quiet_NaN();
     if(f < ni) {
       d = sub(g.cell_centres[pm.neighbour[f]], Co);
-      if(non_orthogonality) {
-        const double c = dot(d, S) / (norm(d) * norm(S) + VSMALL);
-        (*non_orthogonality)[f] = std::acos((std::min)(1.0, (std::max)(-1.0, c))) * 180.0 / M_PI;
-      }
+      const double c = dot(d, S) / (norm(d) * norm(S) + VSMALL);
+      non_orthogonality = std::acos((std::min)(1.0, (std::max)(-1.0, c))) * 180.0 / M_PI;
       fd0 = 0.2 * norm(d);
     } else {
       const double ms = norm(S);
@@ -550,8 +594,23 @@ void face_non_orthogonality_and_skewness(const PointRange& points, const Polyhed
     const Vec3 svHat = mul(sv, 1.0 / (msv + ROOTVSMALL));
     double fd = fd0 + ROOTVSMALL;
     for(auto v : pm.faces[f]) fd = (std::max)(fd, std::abs(dot(svHat, sub(vec(points[v]), Cf))));
-    skewness[f] = msv / fd;
+    sink(f, non_orthogonality, msv / fd);
   }
+}
+
+// OpenFOAM's face non-orthogonality (degrees, internal faces; skipped if `non_orthogonality` is
+// null) and skewness (all faces), from the geometry `g` of the mesh with points `points`
+template <typename Point_3>
+void face_non_orthogonality_and_skewness(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g,
+                                         std::vector<double>* non_orthogonality, std::vector<double>& skewness)
+{
+  const std::size_t ni = pm.neighbour.size();
+  if(non_orthogonality) non_orthogonality->resize(ni);
+  skewness.resize(pm.faces.size());
+  for_each_face_non_orthogonality_and_skewness(points, pm, g, [&](std::size_t f, double no, double sk) {
+    if(non_orthogonality && f < ni) (*non_orthogonality)[f] = no;
+    skewness[f] = sk;
+  });
 }
 } // namespace internal
 
@@ -570,8 +629,10 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
     for(int k = 0; k < 8; ++k) p[k] = mesh.points[mesh.hexahedra[c][k]];
     q.scaled_jacobian[c] = scaled_jacobian(p);
   }
+  // (the cells' geometry only: the faces' centres and areas, two thirds of its memory, are
+  // computed where needed)
   OpenFOAM_geometry g;
-  g.compute(mesh.points, pm);
+  g.compute_cells(mesh.points, pm);
   const std::size_t ni = pm.neighbour.size();
   const double ROOTVSMALL = 1.0e-150;
   face_non_orthogonality_and_skewness(mesh.points, pm, g, &q.non_orthogonality, q.skewness);
@@ -579,7 +640,9 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
   {
   std::vector<Vec3> sumMag(pm.number_of_cells, Vec3{{0, 0, 0}});
   for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-    const Vec3 m{{std::abs(g.face_areas[f][0]), std::abs(g.face_areas[f][1]), std::abs(g.face_areas[f][2])}};
+    Vec3 fc, fa;
+    g.face(mesh.points, pm, f, fc, fa);
+    const Vec3 m{{std::abs(fa[0]), std::abs(fa[1]), std::abs(fa[2])}};
     sumMag[pm.owner[f]] = add(sumMag[pm.owner[f]], m);
     if(f < ni) sumMag[pm.neighbour[f]] = add(sumMag[pm.neighbour[f]], m);
   }
@@ -594,7 +657,7 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
   }
   }   // (`sumMag` freed: the memory peak comes next)
   q.face_warpage = face_warpage(mesh.points, pm, g);
-  q.concave = concave_cells(pm, g);
+  q.concave = concave_cells(mesh.points, pm, g);
   q.cell_volume = std::move(g.cell_volumes);
   return q;
 }

@@ -78,16 +78,30 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
   // centre and area again, and only their cells their flag (the same values, to the bit, as a
   // count from scratch; a full count per round took most of the export's time on motorBike).
   typedef CGAL::Hex_meshing_3::internal::Vec3 Vec3;
+  // (the centres and areas are kept for the faces with a hanging node only, which the rounds
+  // move; the others' are computed where needed: all faces' took 53 MB at the capture's memory
+  // peak on motorBike)
   std::vector<Vec3> fcentre, farea, cc, ca;
+  std::vector<std::uint32_t> fslot;                            // face -> its entry in fcentre, farea (or -1)
   std::vector<std::uint32_t> cstart, cfaces, hstart, hfaces;   // cell -> faces, hanging node -> faces
   std::vector<std::uint32_t> hanging_index;                    // vertex -> its hanging node (or -1)
   std::vector<char> cflag, fmark, cmark;
   std::size_t nconcave = 0;
+  const std::uint32_t no_slot = std::uint32_t(-1);
   auto face_geometry = [&](const std::vector<P3>& y, std::size_t f) {
-    CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fcentre[f], farea[f]);
+    CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fcentre[fslot[f]], farea[fslot[f]]);
   };
-  auto cell_flag = [&](std::size_t c) {
-    return char(CGAL::Hex_meshing_3::internal::concave_cell(*pm, c, cstart, cfaces, fcentre, farea, cc, ca) ? 1 : 0);
+  auto cell_flag = [&](const std::vector<P3>& y, std::size_t c) {
+    cc.clear(); ca.clear();
+    for(std::size_t i = cstart[c]; i < cstart[c + 1]; ++i) {
+      const std::size_t f = cfaces[i];
+      Vec3 fc, fa;
+      if(fslot[f] != no_slot) { fc = fcentre[fslot[f]]; fa = farea[fslot[f]]; }
+      else CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fc, fa);
+      cc.push_back(fc);
+      ca.push_back(CGAL::Hex_meshing_3::internal::mul(fa, pm->owner[f] == c ? 1.0 : -1.0));
+    }
+    return char(CGAL::Hex_meshing_3::internal::concave_cell(cc, ca) ? 1 : 0);
   };
   auto count_from_scratch = [&](const std::vector<P3>& y) {
     const std::size_t nf = pm->faces.size(), nc = pm->number_of_cells;
@@ -101,11 +115,15 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
       hfaces.resize(hstart.back());
       std::vector<std::uint32_t> hpos(hstart.begin(), hstart.end() - 1);
       for(std::size_t f = 0; f < nf; ++f) for(auto v : pm->faces[f]) if(hanging_index[v] != std::uint32_t(-1)) hfaces[hpos[hanging_index[v]]++] = std::uint32_t(f);
-      fcentre.resize(nf); farea.resize(nf); cflag.resize(nc); fmark.assign(nf, 0); cmark.assign(nc, 0);
+      fslot.assign(nf, no_slot);
+      std::uint32_t slots = 0;
+      for(std::size_t f = 0; f < nf; ++f)
+        for(auto v : pm->faces[f]) if(hanging_index[v] != std::uint32_t(-1)) { fslot[f] = slots++; break; }
+      fcentre.resize(slots); farea.resize(slots); cflag.resize(nc); fmark.assign(nf, 0); cmark.assign(nc, 0);
     }
-    for(std::size_t f = 0; f < nf; ++f) face_geometry(y, f);
+    for(std::size_t f = 0; f < nf; ++f) if(fslot[f] != no_slot) face_geometry(y, f);
     nconcave = 0;
-    for(std::size_t c = 0; c < nc; ++c) nconcave += std::size_t(cflag[c] = cell_flag(c));
+    for(std::size_t c = 0; c < nc; ++c) nconcave += std::size_t(cflag[c] = cell_flag(y, c));
     return nconcave;
   };
   if(!(bulge > 0) || mesh.hanging_nodes.empty()) {
@@ -131,7 +149,7 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
     }
     for(std::uint32_t c : touched_cells) {
       cmark[c] = 0;
-      const char fl = cell_flag(c);
+      const char fl = cell_flag(y, c);
       nconcave = nconcave - std::size_t(cflag[c]) + std::size_t(fl);
       cflag[c] = fl;
     }

@@ -543,21 +543,21 @@ public:
       const std::size_t first = m.hexahedra.size() - rep.buffer_cells;
       std::vector<Index> extra;
       {
+        // (the cells' geometry only, the faces' computed where needed, and no per-face array: a
+        // part of the cleanup's memory peak)
         OpenFOAM_geometry g;
-        g.compute(m.points, pm);
-        std::vector<double> skewness, non_orthogonality;
-        face_non_orthogonality_and_skewness(m.points, pm, g, &non_orthogonality, skewness);
-        for(std::size_t f = 0; f < pm.faces.size(); ++f) {
-          const bool skewed = skewness[f] > opt.max_skewness;
-          const bool non_orthogonal = f < non_orthogonality.size() && non_orthogonality[f] > opt.removal_non_orthogonality;
-          if(!skewed && !non_orthogonal) continue;
+        g.compute_cells(m.points, pm);
+        for_each_face_non_orthogonality_and_skewness(m.points, pm, g, [&](std::size_t f, double no, double sk) {
+          const bool skewed = sk > opt.max_skewness;
+          const bool non_orthogonal = f < pm.neighbour.size() && no > opt.removal_non_orthogonality;
+          if(!skewed && !non_orthogonal) return;
           const bool own = pm.owner[f] >= first, nei = f < pm.neighbour.size() && pm.neighbour[f] >= first;
           if(skewed) ++rep.skewed_faces;
           else if(own || nei) ++rep.non_orthogonal_faces;   // (between grid cells: left to the report)
           if(own) extra.push_back(pm.owner[f]);
           if(nei) extra.push_back(pm.neighbour[f]);
-        }
-      }   // (freed: the export's points and geometry come next, the cleanup's memory peak)
+        });
+      }
       // then what checkMesh -allGeometry reports on the points an OpenFOAM case gets (hanging
       // nodes bulged, `IO::internal::foam_points()` with the writer's defaults): the buffer cells
       // that are concave, and those at a face failing the tet decomposition (the repairs guard
@@ -569,17 +569,21 @@ public:
           // removal cannot reach, as grid cells)
           const auto x = IO::internal::foam_points(m, IO::default_hanging_bulge, &pm, IO::default_max_hanging_bulge, nullptr, false);
           OpenFOAM_geometry gx;
-          gx.compute(x, pm);
-          concave = concave_cells(pm, gx);
+          gx.compute_cells(x, pm);
+          concave = concave_cells(x, pm, gx);
           tets = face_tet_errors(x, pm, gx);
           // and the cells whose determinant checkMesh finds small (`cell_determinants()`: few
           // internal faces, or nearly parallel ones; motorBike: one buffer cell), the buffer's
           // only (sums per buffer cell over the internal faces: less memory than all cells' faces)
           std::vector<Area_tensor_sum> acc(concave.size() - (std::min)(concave.size(), std::size_t(first)),
                                            Area_tensor_sum{{0, 0, 0, 0, 0, 0, 0, 0}});
-          for(std::size_t f = 0; f < pm.neighbour.size(); ++f)
+          for(std::size_t f = 0; f < pm.neighbour.size(); ++f) {
+            if(pm.owner[f] < first && pm.neighbour[f] < first) continue;
+            Vec3 fc, fa;
+            gx.face(x, pm, f, fc, fa);
             for(const std::size_t c : {std::size_t(pm.owner[f]), std::size_t(pm.neighbour[f])})
-              if(c >= first) add_face_area(acc[c - first], gx.face_areas[f]);
+              if(c >= first) add_face_area(acc[c - first], fa);
+          }
           for(std::size_t i = 0; i < acc.size(); ++i)
             if(area_tensor_determinant(acc[i]) < openfoam_min_cell_determinant) concave[first + i] = 2;
         }
