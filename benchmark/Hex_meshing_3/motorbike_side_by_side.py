@@ -8,12 +8,13 @@ more than 30 degrees (level (5 6), resolveFeatureAngle 30); feature edges 1/64 m
 refinement box (-1,-0.7,0)-(8,0.7,2.5) at 1/16 m (level 4); 3 cells between levels; the seed
 (3.0001,3.0001,0.43). Both are pinned to one core (taskset) and timed by /usr/bin/time.
 
---gaps adds --thin-cells 6 --thin-size 0.015625 to hexmesh's options: the gaps and plates thinner
-than 6 cells of 1/32 m get 1/64 m (level 6, no finer than snappy's cells). snappyHexMesh's level
-(5 6) takes a cell to level 6 where the surface intersections it sees along its connections have
-normals more than 30 degrees apart, which includes the two sides of a gap or plate a cell or two
-across; --curvature-angle looks at the triangles within one cut cell only. (2026-12-04: mesh to
-input 1.7 -> 1.4 mm mean, 376,287 cells, but peak memory 0.52 of snappy's, over the goal's half.)
+hexmesh also gets --thin-cells 6 --thin-size 0.015625 (--no-gaps leaves it out): the gaps and
+plates thinner than 6 cells of 1/32 m get 1/64 m (level 6, no finer than snappy's cells).
+snappyHexMesh's level (5 6) takes a cell to level 6 where the surface intersections it sees along
+its connections have normals more than 30 degrees apart, which includes the two sides of a gap or
+plate a cell or two across; --curvature-angle looks at the triangles within one cut cell only.
+(2026-12-04: mesh to input 1.7 -> 1.4 mm mean, 360,048 -> 376,287 cells, peak memory 0.47 of
+snappy's.)
 
 For each mesher: cells, wall seconds and peak memory (snappy: snappyHexMesh -overwrite, with
 blockMesh and surfaceFeatureExtract apart; hexmesh: from reading to writing), checkMesh
@@ -23,7 +24,7 @@ box patches left out, measured both ways against the input by surface_distance (
 for both: area-uniform samples, CGAL AABB tree).
 
 Usage: benchmark/Hex_meshing_3/motorbike_side_by_side.py [--hexmesh PATH] [--work DIR]
-                                                         [--skip-snappy] [--samples N] [--gaps]
+                                                         [--skip-snappy] [--samples N] [--no-gaps]
 Writes DIR/results.json and prints a table. Needs OpenFOAM (Debian's openfoam) for snappy and
 checkMesh; builds surface_distance (cmake --build build --target surface_distance) if missing.
 """
@@ -51,7 +52,7 @@ HEXMESH_OPTIONS = ["--box", "-5,-4,0,15,4,8", "--size", "1", "--surface-size", "
                    "--curvature-angle", "30", "--feature-size", "0.015625",
                    "--refine-box", "-1,-0.7,0,8,0.7,2.5:0.0625", "--cells-between-levels", "3",
                    "--region", "seed:3.0001,3.0001,0.43"]
-GAP_OPTIONS = ["--thin-cells", "6", "--thin-size", "0.015625"]   # (--gaps)
+GAP_OPTIONS = ["--thin-cells", "6", "--thin-size", "0.015625"]   # (not with --no-gaps)
 BOX_PATCHES = {"hexmesh": "xmin|xmax|ymin|ymax|zmin|zmax",
                "snappyHexMesh": "frontAndBack|inlet|outlet|lowerWall|upperWall"}
 GROUND_PATCH = {"hexmesh": "zmin", "snappyHexMesh": "lowerWall"}
@@ -138,8 +139,8 @@ def main():
     ap.add_argument("--work", help="directory for the cases (default: a temporary one, kept)")
     ap.add_argument("--skip-snappy", action="store_true")
     ap.add_argument("--samples", type=int, default=200000, help="points sampled on each surface for the fidelity")
-    ap.add_argument("--gaps", action="store_true", help="hexmesh also refines gaps and plates thinner than 6 cells "
-                    "to 1/64 m (--thin-cells 6 --thin-size 0.015625)")
+    ap.add_argument("--no-gaps", action="store_true", help="hexmesh without the refinement of gaps and plates thinner "
+                    "than 6 cells to 1/64 m (--thin-cells 6 --thin-size 0.015625)")
     args = ap.parse_args()
     bike = driver.find_input("motorBike.obj.gz")
     if not bike:
@@ -157,7 +158,7 @@ def main():
     case = os.path.join(work, "hexmesh")
     shutil.rmtree(case, ignore_errors=True)
     rep = os.path.join(work, "hexmesh_report.json")
-    options = HEXMESH_OPTIONS + (GAP_OPTIONS if args.gaps else [])
+    options = HEXMESH_OPTIONS + ([] if args.no_gaps else GAP_OPTIONS)
     rc, wall, mib = timed([args.hexmesh, bike, "-o", case, "--report", rep, "--force", "-q"] + options,
                           work, os.path.join(work, "hexmesh.log"))
     ours = {"exit": rc, "options": options, "seconds": wall, "peak_MiB": mib}
