@@ -358,8 +358,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // same capture without the removal); its cells below 0.3 and minimum after the removal
       auto best = faults(out);
       std::get<0>(best) = first_capture.foam_faults_found;
-      // (after a capture with pillows, the one without them runs whatever the count)
-      // (no pillow was made: the first capture was the one without them, which is not run again)
+      // Where the first capture made no pillow it was the capture without them, which is not run
+      // again; after one with pillows, the one without runs whatever the count of cells below 0.3,
+      // and its own count decides whether the other weights are tried.
       const bool first_had_pillows = sequence[0].pillows && stats.pillow_cells > 0;
       if(sequence[0].pillows && !first_had_pillows) sequence.erase(sequence.begin() + 1);
       bool hopeless = std::get<1>(best) > max_low_cells && !first_had_pillows;

@@ -265,36 +265,34 @@ inline void cell_faces(const Polyhedral_mesh_3& pm, std::vector<std::uint32_t>& 
 }
 
 // OpenFOAM's concave test of cell c of `pm`, from its faces (`cell_faces()`) and their centres
-// and area vectors (`centres`, `areas`: work space)
-inline bool concave_cell(const Polyhedral_mesh_3& pm, std::size_t c, const std::vector<std::uint32_t>& start,
-                         const std::vector<std::uint32_t>& faces, const std::vector<Vec3>& face_centres,
-                         const std::vector<Vec3>& face_areas, std::vector<Vec3>& centres, std::vector<Vec3>& areas)
-{
-  centres.clear(); areas.clear();
-  for(std::size_t i = start[c]; i < start[c + 1]; ++i) {
-    const std::size_t f = faces[i];
-    centres.push_back(face_centres[f]);
-    areas.push_back(mul(face_areas[f], pm.owner[f] == c ? 1.0 : -1.0));
-  }
-  return concave_cell(centres, areas);
-}
-
-// the same, the faces' centres and areas from `g` (computed from `points` where `g` holds the
-// cells only: `OpenFOAM_geometry::compute_cells()`)
-template <typename Point_3>
-bool concave_cell(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g,
-                  std::size_t c, const std::vector<std::uint32_t>& start, const std::vector<std::uint32_t>& faces,
-                  std::vector<Vec3>& centres, std::vector<Vec3>& areas)
+// and area vectors, which `face(f, centre, area)` gives (`centres`, `areas`: work space)
+template <typename Face>
+bool concave_cell(const Polyhedral_mesh_3& pm, std::size_t c, const std::vector<std::uint32_t>& start,
+                  const std::vector<std::uint32_t>& faces, const Face& face, std::vector<Vec3>& centres,
+                  std::vector<Vec3>& areas)
 {
   centres.clear(); areas.clear();
   for(std::size_t i = start[c]; i < start[c + 1]; ++i) {
     const std::size_t f = faces[i];
     Vec3 fc, fa;
-    g.face(points, pm, f, fc, fa);
+    face(f, fc, fa);
     centres.push_back(fc);
     areas.push_back(mul(fa, pm.owner[f] == c ? 1.0 : -1.0));
   }
   return concave_cell(centres, areas);
+}
+
+// `concave_cells()`, the faces' centres and areas from `face(f, centre, area)`
+template <typename Face>
+std::vector<char> concave_cells_of(const Polyhedral_mesh_3& pm, const Face& face)
+{
+  std::vector<std::uint32_t> start, faces;
+  cell_faces(pm, start, faces);
+  std::vector<char> concave(pm.number_of_cells, 0);
+  std::vector<Vec3> centres, areas;
+  for(std::size_t c = 0; c < pm.number_of_cells; ++c)
+    concave[c] = concave_cell(pm, c, start, faces, face, centres, areas) ? 1 : 0;
+  return concave;
 }
 } // namespace internal
 
@@ -311,15 +309,9 @@ bool concave_cell(const std::vector<Point_3>& points, const Polyhedral_mesh_3& p
  */
 inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g)
 {
-  using namespace internal;
   CGAL_precondition(g.face_areas.size() == pm.faces.size() && g.face_centres.size() == pm.faces.size());   // `compute()`, not `compute_cells()`
-  std::vector<std::uint32_t> start, faces;
-  cell_faces(pm, start, faces);
-  std::vector<char> concave(pm.number_of_cells, 0);
-  std::vector<Vec3> centres, areas;
-  for(std::size_t c = 0; c < pm.number_of_cells; ++c)
-    concave[c] = concave_cell(pm, c, start, faces, g.face_centres, g.face_areas, centres, areas) ? 1 : 0;
-  return concave;
+  return internal::concave_cells_of(pm, [&](std::size_t f, internal::Vec3& c, internal::Vec3& a) {
+    c = g.face_centres[f]; a = g.face_areas[f]; });
 }
 
 /*!
@@ -331,14 +323,8 @@ inline std::vector<char> concave_cells(const Polyhedral_mesh_3& pm, const OpenFO
 template <typename Point_3>
 std::vector<char> concave_cells(const std::vector<Point_3>& points, const Polyhedral_mesh_3& pm, const OpenFOAM_geometry& g)
 {
-  using namespace internal;
-  std::vector<std::uint32_t> start, faces;
-  cell_faces(pm, start, faces);
-  std::vector<char> concave(pm.number_of_cells, 0);
-  std::vector<Vec3> centres, areas;
-  for(std::size_t c = 0; c < pm.number_of_cells; ++c)
-    concave[c] = concave_cell(points, pm, g, c, start, faces, centres, areas) ? 1 : 0;
-  return concave;
+  return internal::concave_cells_of(pm, [&](std::size_t f, internal::Vec3& c, internal::Vec3& a) {
+    g.face(points, pm, f, c, a); });
 }
 
 namespace internal {
@@ -560,8 +546,6 @@ std::vector<double> face_warpage(const std::vector<Point_3>& points, const Polyh
 }
 
 namespace internal {
-// OpenFOAM's face non-orthogonality (degrees, internal faces; skipped if `non_orthogonality` is
-// null) and skewness (all faces), from the geometry `g` of the mesh with points `points`
 // `sink(f, non_orthogonality, skewness)` for each face f: OpenFOAM's non-orthogonality (degrees;
 // NaN for a boundary face) and skewness; `g` from `compute()` or `compute_cells()` (then the
 // faces' centres and areas are computed from `points`)

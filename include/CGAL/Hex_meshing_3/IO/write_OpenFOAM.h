@@ -92,16 +92,11 @@ std::vector<std::array<double, 3>> foam_points(const HexMesh& mesh, double bulge
     CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fcentre[fslot[f]], farea[fslot[f]]);
   };
   auto cell_flag = [&](const std::vector<P3>& y, std::size_t c) {
-    cc.clear(); ca.clear();
-    for(std::size_t i = cstart[c]; i < cstart[c + 1]; ++i) {
-      const std::size_t f = cfaces[i];
-      Vec3 fc, fa;
+    auto face = [&](std::size_t f, Vec3& fc, Vec3& fa) {
       if(fslot[f] != no_slot) { fc = fcentre[fslot[f]]; fa = farea[fslot[f]]; }
       else CGAL::Hex_meshing_3::OpenFOAM_geometry::face_centre_and_area(y, pm->faces[f], fc, fa);
-      cc.push_back(fc);
-      ca.push_back(CGAL::Hex_meshing_3::internal::mul(fa, pm->owner[f] == c ? 1.0 : -1.0));
-    }
-    return char(CGAL::Hex_meshing_3::internal::concave_cell(cc, ca) ? 1 : 0);
+    };
+    return char(CGAL::Hex_meshing_3::internal::concave_cell(*pm, c, cstart, cfaces, face, cc, ca) ? 1 : 0);
   };
   auto count_from_scratch = [&](const std::vector<P3>& y) {
     const std::size_t nf = pm->faces.size(), nc = pm->number_of_cells;
