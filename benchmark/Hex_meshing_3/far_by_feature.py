@@ -5,9 +5,11 @@ Reads the input surface (OBJ, optionally .gz, or plain OFF) and the mesh->input 
 `surface_distance --dump PREFIX` writes (PREFIX_a_to_b.txt: x y z distance per line, the mesh
 being the first surface), and sorts the samples farther than --beyond by the kind of the input
 feature edge nearest to them within --radius: a convex or a concave sharp edge (dihedral angle of
-at least --angle degrees), an open edge (one triangle), a non-manifold edge (more than two), or
-none within the radius (a smooth part: a gap bridged, a face too large for the curvature, a
-vertex that did not reach the surface). For each kind it prints the samples and the sum of their
+at least --angle degrees), an open edge (one triangle), a non-manifold edge (more than two, where
+surfaces meet), a crease or the border of a zero-thickness sheet given as a part and its reversed
+copy (motorBike's NAME and NAME-shadow: every edge of such a sheet has two pairs of triangles on
+the same vertices, its border one pair), or none within the radius (a smooth part: a gap
+bridged, a face too large for the curvature, a vertex that did not reach the surface). For each kind it prints the samples and the sum of their
 distances: with the same input and the same sampling, the sums of two meshes compare where each
 stands off.
 
@@ -29,7 +31,7 @@ import numpy as np
 
 import suite  # (its OFF reader; the modules of benchmark/Hex_meshing_3 are imported from there)
 
-KINDS = ["convex", "concave", "open", "non_manifold"]
+KINDS = ["convex", "concave", "open", "non_manifold", "sheet_crease", "sheet_border"]
 
 
 def read_surface(path):
@@ -80,9 +82,37 @@ def feature_samples(V, T, P, angle, spacing):
     ends, kinds = [], []
     one = start[count == 1]
     ends.append(np.stack([lo[one], hi[one]], 1)); kinds.append(np.full(len(one), 2))
+    # A zero-thickness sheet is a part and its reversed copy (motorBike's NAME and NAME-shadow):
+    # each of its triangles has a twin on the same three vertices. An edge of such a sheet has
+    # four triangles, two pairs of twins: a crease of the sheet if the two pairs' planes meet at
+    # `angle` or more (else no feature), not a junction of several surfaces; an edge with one pair
+    # of twins is the sheet's border.
+    S = np.sort(T, axis=1)
     many = start[count > 2]
-    ends.append(np.stack([lo[many], hi[many]], 1)); kinds.append(np.full(len(many), 3))
+    nm, crease = [], []
+    for s0, c in zip(many, count[count > 2]):
+        ts = tri[s0:s0 + c]
+        keys = {}
+        for t in ts:
+            keys.setdefault(tuple(S[t]), []).append(t)
+        groups = list(keys.values())
+        if len(groups) == 2 and all(len(g) == 2 for g in groups):
+            # one triangle of each pair, of the same part (so oriented alike) if there is one
+            # (across parts the orientations may differ: then the angle between the planes)
+            a, b = next(((a, b) for a in groups[0] for b in groups[1] if P[a] == P[b]), (groups[0][0], groups[1][0]))
+            cos_ab = float(np.dot(N[a], N[b]))
+            if (cos_ab if P[a] == P[b] else abs(cos_ab)) <= np.cos(np.radians(angle)):
+                crease.append(s0)
+        else:
+            nm.append(s0)
+    nm, crease = np.array(nm, int), np.array(crease, int)
+    ends.append(np.stack([lo[nm], hi[nm]], 1)); kinds.append(np.full(len(nm), 3))
+    ends.append(np.stack([lo[crease], hi[crease]], 1)); kinds.append(np.full(len(crease), 4))
     two = start[count == 2]
+    twins = np.all(S[tri[two]] == S[tri[two + 1]], axis=1)
+    border = two[twins]
+    ends.append(np.stack([lo[border], hi[border]], 1)); kinds.append(np.full(len(border), 5))
+    two = two[~twins]
     f0, f1, o1 = tri[two], tri[two + 1], o[two + 1]
     sharp = np.einsum("ij,ij->i", N[f0], N[f1]) <= np.cos(np.radians(angle))
     convex = np.einsum("ij,ij->i", V[o1] - V[lo[two]], N[f0]) < 0
