@@ -9,9 +9,9 @@ at least --angle degrees), an open edge (one triangle), a non-manifold edge (mor
 surfaces meet), a crease or the border of a zero-thickness sheet given as a part and its reversed
 copy (motorBike's NAME and NAME-shadow: every edge of such a sheet has two pairs of triangles on
 the same vertices, its border one pair), or none within the radius (a smooth part: a gap
-bridged, a face too large for the curvature, a vertex that did not reach the surface). For each kind it prints the samples and the sum of their
-distances: with the same input and the same sampling, the sums of two meshes compare where each
-stands off.
+bridged, a face too large for the curvature, a vertex that did not reach the surface). For each
+kind it prints the samples and the sum of their distances: with the same input and the same
+sampling, the sums of two meshes compare where each stands off.
 
 Convex and concave need outward normals: each part (OBJ group, or the whole OFF) is oriented so
 that its signed volume is positive; the convexity of an open part's edges is only as good as its
@@ -79,6 +79,7 @@ def feature_samples(V, T, P, angle, spacing):
     key = lo.astype(np.int64) * (len(V) + 1) + hi
     start = np.flatnonzero(np.r_[True, key[1:] != key[:-1]])
     count = np.diff(np.r_[start, len(key)])
+    cos_max = np.cos(np.radians(angle))
     ends, kinds = [], []
     one = start[count == 1]
     ends.append(np.stack([lo[one], hi[one]], 1)); kinds.append(np.full(len(one), 2))
@@ -101,7 +102,7 @@ def feature_samples(V, T, P, angle, spacing):
             # (across parts the orientations may differ: then the angle between the planes)
             a, b = next(((a, b) for a in groups[0] for b in groups[1] if P[a] == P[b]), (groups[0][0], groups[1][0]))
             cos_ab = float(np.dot(N[a], N[b]))
-            if (cos_ab if P[a] == P[b] else abs(cos_ab)) <= np.cos(np.radians(angle)):
+            if (cos_ab if P[a] == P[b] else abs(cos_ab)) <= cos_max:
                 crease.append(s0)
         else:
             nm.append(s0)
@@ -114,7 +115,7 @@ def feature_samples(V, T, P, angle, spacing):
     ends.append(np.stack([lo[border], hi[border]], 1)); kinds.append(np.full(len(border), 5))
     two = two[~twins]
     f0, f1, o1 = tri[two], tri[two + 1], o[two + 1]
-    sharp = np.einsum("ij,ij->i", N[f0], N[f1]) <= np.cos(np.radians(angle))
+    sharp = np.einsum("ij,ij->i", N[f0], N[f1]) <= cos_max
     convex = np.einsum("ij,ij->i", V[o1] - V[lo[two]], N[f0]) < 0
     two, convex = two[sharp], convex[sharp]
     ends.append(np.stack([lo[two], hi[two]], 1)); kinds.append(np.where(convex, 0, 1))
