@@ -5,7 +5,8 @@ Runs hexmesh (VTU output only: the quality is measured on the exact points) with
 options on every test/Hex_meshing_3/data/*.off, two at a time, and prints: cells, min scaled
 Jacobian, cells below 0.3, max non-orthogonality (degrees), surface faces farther than 1/4, 1/2
 and 1 surface size from the input and the farthest (x surface size), the input's farthest sampled
-point from the mesh, the feature fidelity both ways and the worst corner (x surface size), feature
+point from the mesh, the feature fidelity both ways (F: strict, T: within the report's angle tolerance of
+10 degrees) and the worst corner (x surface size), feature
 curves missed, buffer cells removed, vertices that could not reach the surface, total seconds,
 and why the faces beyond 1/4 surface size stand off (the report's far_face_causes, h/k/c/f/b): the
 farthest point a hanging corner (the midpoint of a coarser face's edge: a chord), a corner nearest
@@ -110,7 +111,7 @@ def main():
         head += "; surface size %g x the default" % args.size_factor
     print(head + "; distances in surface sizes")
     print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
-          f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
+          f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'T i2m':>5s} {'T m2i':>5s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
           f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}  {'h/k/c/f/b':s}")
     goals = near = 0
     cause_total = {}
@@ -119,12 +120,14 @@ def main():
             print(f"{stem:20s} FAILED: {err.strip()}")
             continue
         s, q, fi, ff, b = j["fidelity"]["surface_size"], j["quality"], j["fidelity"], j["feature_fidelity"], j.get("boundary", {})
+        ft = ff.get("within_tolerance", {})
         h = q["histograms"]["scaled_jacobian"]   # 20 bins from -1 to 1: bins 10..12 are [0, 0.3)
         rel = lambda x: float("inf") if x is None else x / s
         print(f"{stem:20s} {j['counts']['cells']:6d} {q['scaled_jacobian']['min']:6.3f} {sum(h['counts'][10:13]):4d} "
               f"{q['non_orthogonality']['max']:5.1f} {fi['faces_beyond_quarter_surface_size']:5d} "
               f"{fi['faces_beyond_half_surface_size']:4d} {fi['faces_beyond_surface_size']:4d} {fi['mesh_to_input_max'] / s:5.2f} "
               f"{fi['input_to_mesh_max'] / s:5.2f} {rel(ff['input_to_mesh']):6.2f} {rel(ff['mesh_to_input']):6.2f} "
+              f"{rel(ft.get('input_to_mesh')):5.2f} {rel(ft.get('mesh_to_input')):5.2f} "
               f"{rel(ff['max_corner_distance']):5.2f} {b.get('curves_missed', -1):4d} {b.get('removed_buffer_cells', -1):4d} "
               f"{b.get('unreached_vertices', -1):4d} {q.get('concave_cells', -1):4d} {q.get('face_tet_errors', -1):4d} "
               f"{b.get('capture_tries', 0):4d} {j['seconds']['total']:5.2f}  "

@@ -925,7 +925,9 @@ def main():
         print(f"  reported: {stem}: faces beyond 0.25 / 0.5 / 1 x surface size: "
               f"{fi['faces_beyond_quarter_surface_size']} / {fi['faces_beyond_half_surface_size']} / "
               f"{fi['faces_beyond_surface_size']} of {fi['surface_faces']}; features input->mesh {sz(ff['input_to_mesh'])}, "
-              f"mesh->input {sz(ff['mesh_to_input'])}, worst corner {sz(ff['max_corner_distance'])} x surface size")
+              f"mesh->input {sz(ff['mesh_to_input'])} (within {ff['within_tolerance']['tolerance_degrees']:g} degrees: "
+              f"{sz(ff['within_tolerance']['input_to_mesh'])} / {sz(ff['within_tolerance']['mesh_to_input'])}), "
+              f"worst corner {sz(ff['max_corner_distance'])} x surface size")
         if stem in FEATURE_FIDELITY_FLOOR:
             lim_i, lim_m = FEATURE_FIDELITY_FLOOR[stem]
             check(ff["input_to_mesh"] is not None and ff["mesh_to_input"] is not None and

@@ -1064,6 +1064,30 @@ void test_feature_fidelity()
     const HM::Feature_fidelity blunt = HM::feature_fidelity(m, d, f, 95);
     assert(blunt.mesh_feature_edges == 0 && blunt.input_feature_edges == 12);
     assert(std::isinf(blunt.input_to_mesh) && blunt.mesh_to_input == 0);
+    // within a 10 degree tolerance the right angles are mesh features again for the input's
+    // (sharp at 30) edges to meet: input->mesh 0; no mesh edge reaches 95 degrees: mesh->input 0
+    auto at = [&d](double angle) {
+      Features::Options o;
+      o.feature_angle = angle;
+      return Features(d, o);
+    };
+    const Features f85 = at(85), f75 = at(75), f95 = at(95);
+    assert(f85.number_of_edges(Features::SHARP) == 12 && f95.number_of_edges(Features::SHARP) == 0);
+    const HM::Feature_fidelity tol = HM::feature_fidelity_with_tolerance(m, d, f, f85, 95, 10);
+    assert(tol.mesh_feature_edges == 0 && tol.input_to_mesh < 1e-12 && tol.mesh_to_input == 0);
+    // the other way: an input with no edge of 95 degrees and the mesh's at 85: strictly, the
+    // mesh's 12 feature edges are infinitely far from the input's (none); within 10 degrees the
+    // input's right angles (the curves at 75) count and they coincide
+    const HM::Feature_fidelity sharp_mesh = HM::feature_fidelity(m, d, f95, 85);
+    assert(sharp_mesh.mesh_feature_edges == 12 && sharp_mesh.input_feature_edges == 0);
+    assert(sharp_mesh.input_to_mesh == 0 && std::isinf(sharp_mesh.mesh_to_input));
+    const HM::Feature_fidelity tol2 = HM::feature_fidelity_with_tolerance(m, d, f95, f75, 85, 10);
+    assert(tol2.input_to_mesh == 0 && tol2.mesh_to_input < 1e-12);
+    // a tolerance of 0 ignores the second curves: the strict figures
+    const HM::Feature_fidelity zero = HM::feature_fidelity_with_tolerance(m, d, f95, f75, 85, 0);
+    assert(std::isinf(zero.mesh_to_input));
+    std::cout << "  angle tolerance: input->mesh " << tol.input_to_mesh << " (strict inf), mesh->input "
+              << tol2.mesh_to_input << " (strict inf)\n";
   }
   // 3. a coarse cell [0,2]^3 beside four fine ones [2,3]x[0,2]^2: the coarse faces' edges at x = 2
   //    carry hanging midpoints and meet the fine faces' half edges there (no feature), the box's

@@ -772,6 +772,23 @@ int main(int argc, char** argv)
                                  {"mesh_to_input", finite(ff.mesh_to_input)}, {"mesh_to_input_worst_at", loc(ff.worst_mesh_location)},
                                  {"corners", ff.corners}, {"max_corner_distance", finite(ff.max_corner_distance)},
                                  {"worst_corner_at", loc(ff.worst_corner_location)}, {"sample_spacing", ff.sample_spacing}};
+        // the same within an angle tolerance: each side against the other's edges at 10 degrees
+        // less (all the input's edges there, unfiltered), so that a crease near the angle is not
+        // counted as missed or invented for lying on the other side of it
+        {
+          const double tolerance = (std::min)(10.0, feature_angle / 2);
+          HM::Feature_curves_3<K>::Options lopt = fopt;
+          lopt.feature_angle = feature_angle - tolerance;
+          lopt.scale = 0;
+          lopt.contrast = 0;
+          const HM::Feature_curves_3<K> loose(domain, lopt);
+          const HM::Feature_fidelity ft =
+              HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, tolerance, ff.sample_spacing);
+          j["feature_fidelity"]["within_tolerance"] = {
+              {"tolerance_degrees", tolerance},
+              {"input_to_mesh", finite(ft.input_to_mesh)}, {"input_to_mesh_worst_at", loc(ft.worst_input_location)},
+              {"mesh_to_input", finite(ft.mesh_to_input)}, {"mesh_to_input_worst_at", loc(ft.worst_mesh_location)}};
+        }
         j["fidelity"]["seconds"] = since(tf);
         auto tj = [](const HM::Surface_topology& t) {
           return nlohmann::ordered_json{{"components", t.components}, {"euler_characteristic", t.euler_characteristic},

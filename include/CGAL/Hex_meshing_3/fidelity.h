@@ -381,61 +381,26 @@ struct Feature_fidelity
   double sample_spacing = 0;        ///< the spacing of the samples along the edges (as given, or automatic)
 };
 
-/*!
- * \ingroup PkgHexMeshing3Quality
- * \brief measures how well the boundary of `mesh` captures the feature curves of the input, both
- * ways, and how close its boundary vertices come to the input's corners.
- *
- * - Input feature edges: the edges of `features` whose kind includes `SHARP`, `OPEN` or
- *   `NON_MANIFOLD` (not those that are only `PATCH_BORDER`s: the mesh side has no counterpart).
- *   Which edges are sharp was decided when `features` was built (its own feature angle).
- * - Mesh feature edges: the boundary faces are first made polygons by inserting the hanging nodes
- *   that lie inside their edges (`Polyhedral_mesh_3`'s view), so that a coarse face's edge pairs
- *   with its finer neighbours' halves. An edge of these polygons that belongs to at least one face
- *   on a surface patch (patch >= 6) is a feature edge if it also belongs to a face on a box patch
- *   (0..5), or to only one face (open), or to more than two faces (non-manifold), or to exactly two
- *   faces whose normals make an angle of at least `feature_angle` degrees. A quad's normal is its
- *   vector area (its diagonals' cross product), as faces may be slightly non-planar; a degenerate
- *   normal makes no feature. Edges between faces of two different surface patches are not
- *   features by themselves.
- * - Distances: every edge of each set is sampled at `sample_spacing` (or finer: the edge is cut
- *   into equal parts, its end points included), and the distance from each sample to the nearest
- *   edge of the other set is found through an AABB tree of segments. The maxima are lower bounds of
- *   the two one-sided Hausdorff distances between the edge sets, below them by at most half the
- *   spacing. With `sample_spacing` <= 0 the spacing is 1/20 of the mean length of the input
- *   feature edges or of the mesh feature edges, whichever is smaller.
- * - Corners: each of `features.corners()` against the nearest vertex of a boundary face on a surface
- *   patch (hanging nodes included); infinite if there is none.
- *
- * The result is deterministic: edges are visited in a fixed order and ties keep the first sample.
- * See `Feature_fidelity` for empty sets.
- *
- * \tparam HexMesh a `Hex_mesh_3`
- * \tparam Domain a `Surface_domain_3` (its kernel is used)
- * \tparam FeatureCurves a `Feature_curves_3` built from `domain`
- */
-template <typename HexMesh, typename Domain, typename FeatureCurves>
-Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, const FeatureCurves& features,
-                                  double feature_angle = 30, double sample_spacing = 0)
-{
-  (void)domain;
-  typedef typename Domain::Geom_traits GT;
-  typedef typename GT::FT FT;
-  typedef typename GT::Point_3 Point_3;
-  typedef typename GT::Segment_3 Segment_3;
-  typedef std::array<double, 3> V;
-  const double inf = std::numeric_limits<double>::infinity();
-  auto vec = [](const Point_3& p) -> V { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
-  Feature_fidelity r;
+namespace internal {
 
-  // input feature edges
+// the input's feature edges of kind SHARP, OPEN or NON_MANIFOLD, as segments
+template <typename Segment_3, typename FeatureCurves>
+std::vector<Segment_3> input_feature_segments(const FeatureCurves& features)
+{
   std::vector<Segment_3> input;
   const unsigned wanted = unsigned(FeatureCurves::SHARP) | unsigned(FeatureCurves::OPEN) | unsigned(FeatureCurves::NON_MANIFOLD);
   for(const auto& e : features.edges())
     if(unsigned(e.kind) & wanted) input.emplace_back(features.point(e.vertices[0]), features.point(e.vertices[1]));
-  r.input_feature_edges = input.size();
+  return input;
+}
 
-  // mesh feature edges, from the boundary polygons
+// the feature edges of the mesh boundary's polygons at `feature_angle` degrees (see
+// `feature_fidelity()`), as segments
+template <typename Segment_3, typename HexMesh>
+std::vector<Segment_3> mesh_feature_segments(const HexMesh& mesh, double feature_angle)
+{
+  typedef std::array<double, 3> V;
+  auto vec = [](const auto& p) -> V { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
   const std::vector<std::vector<std::uint32_t>> polys = internal::boundary_polygons(mesh);
   std::vector<V> normal(polys.size());
   for(std::size_t f = 0; f < polys.size(); ++f) {
@@ -482,7 +447,73 @@ Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, con
     }
     i = j;
   }
+  return meshed;
+}
+
+} // namespace internal
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief measures how well the boundary of `mesh` captures the feature curves of the input, both
+ * ways (within an angle tolerance), and how close its boundary vertices come to the input's corners.
+ *
+ * - Input feature edges: the edges of `features` whose kind includes `SHARP`, `OPEN` or
+ *   `NON_MANIFOLD` (not those that are only `PATCH_BORDER`s: the mesh side has no counterpart).
+ *   Which edges are sharp was decided when `features` was built (its own feature angle).
+ * - Mesh feature edges: the boundary faces are first made polygons by inserting the hanging nodes
+ *   that lie inside their edges (`Polyhedral_mesh_3`'s view), so that a coarse face's edge pairs
+ *   with its finer neighbours' halves. An edge of these polygons that belongs to at least one face
+ *   on a surface patch (patch >= 6) is a feature edge if it also belongs to a face on a box patch
+ *   (0..5), or to only one face (open), or to more than two faces (non-manifold), or to exactly two
+ *   faces whose normals make an angle of at least `feature_angle` degrees. A quad's normal is its
+ *   vector area (its diagonals' cross product), as faces may be slightly non-planar; a degenerate
+ *   normal makes no feature. Edges between faces of two different surface patches are not
+ *   features by themselves.
+ * - Distances: every edge of each set is sampled at `sample_spacing` (or finer: the edge is cut
+ *   into equal parts, its end points included), and the distance from each sample to the nearest
+ *   edge of the other set is found through an AABB tree of segments. The maxima are lower bounds of
+ *   the two one-sided Hausdorff distances between the edge sets, below them by at most half the
+ *   spacing. With `sample_spacing` <= 0 the spacing is 1/20 of the mean length of the input
+ *   feature edges or of the mesh feature edges, whichever is smaller.
+ * - Corners: each of `features.corners()` against the nearest vertex of a boundary face on a surface
+ *   patch (hanging nodes included); infinite if there is none.
+ * - Tolerance: with `tolerance` > 0 degrees, each side is compared with the other side's edges at
+ *   a lower angle: the input's feature edges (of `features`) against the mesh edges of at least
+ *   `feature_angle - tolerance` degrees, and the mesh edges of at least `feature_angle` against
+ *   the feature edges of `loose_features` (the same input's curves built at `feature_angle -
+ *   tolerance`). A crease of the input at the angle (30.0 degrees) that the mesh reproduces at
+ *   29, or a crease of the mesh at 32 degrees across the facets of a faceted blend (22.5 each),
+ *   then counts as followed. With `tolerance` <= 0, `loose_features` is not used (the strict
+ *   form, `feature_fidelity()`).
+ *
+ * The result is deterministic: edges are visited in a fixed order and ties keep the first sample.
+ * See `Feature_fidelity` for empty sets.
+ *
+ * \tparam HexMesh a `Hex_mesh_3`
+ * \tparam Domain a `Surface_domain_3` (its kernel is used)
+ * \tparam FeatureCurves a `Feature_curves_3` built from `domain`
+ */
+template <typename HexMesh, typename Domain, typename FeatureCurves>
+Feature_fidelity feature_fidelity_with_tolerance(const HexMesh& mesh, const Domain& domain, const FeatureCurves& features,
+                                                 const FeatureCurves& loose_features, double feature_angle,
+                                                 double tolerance, double sample_spacing = 0)
+{
+  (void)domain;
+  typedef typename Domain::Geom_traits GT;
+  typedef typename GT::FT FT;
+  typedef typename GT::Point_3 Point_3;
+  typedef typename GT::Segment_3 Segment_3;
+  const double inf = std::numeric_limits<double>::infinity();
+  auto vec = [](const Point_3& p) -> std::array<double, 3> { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
+  Feature_fidelity r;
+  const std::vector<Segment_3> input = internal::input_feature_segments<Segment_3>(features);
+  r.input_feature_edges = input.size();
+  const std::vector<Segment_3> meshed = internal::mesh_feature_segments<Segment_3>(mesh, feature_angle);
   r.mesh_feature_edges = meshed.size();
+  // the other sides' sets, at the lower angle (the same sets without a tolerance)
+  const bool loose = tolerance > 0;
+  const std::vector<Segment_3> loose_input = loose ? internal::input_feature_segments<Segment_3>(loose_features) : std::vector<Segment_3>();
+  const std::vector<Segment_3> loose_meshed = loose ? internal::mesh_feature_segments<Segment_3>(mesh, feature_angle - tolerance) : std::vector<Segment_3>();
 
   // sample spacing
   auto mean_length = [](const std::vector<Segment_3>& segs) {
@@ -523,13 +554,14 @@ Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, con
       }
     }
   };
-  one_way(input, meshed, r.input_to_mesh, r.worst_input_location);
-  one_way(meshed, input, r.mesh_to_input, r.worst_mesh_location);
+  one_way(input, loose ? loose_meshed : meshed, r.input_to_mesh, r.worst_input_location);
+  one_way(meshed, loose ? loose_input : input, r.mesh_to_input, r.worst_mesh_location);
 
   // corners -> nearest boundary vertex on a surface patch
   const auto& corners = features.corners();
   r.corners = corners.size();
   if(corners.empty()) return r;
+  const std::vector<std::vector<std::uint32_t>> polys = internal::boundary_polygons(mesh);
   std::vector<Point_3> bv;
   {
     std::vector<std::uint32_t> ids;
@@ -554,6 +586,18 @@ Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, con
     if(dist > r.max_corner_distance) { r.max_corner_distance = dist; r.worst_corner_location = vec(p); }
   }
   return r;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
+ * \brief `feature_fidelity_with_tolerance()` with no tolerance: the input's feature edges against
+ * the mesh's at `feature_angle`, both ways.
+ */
+template <typename HexMesh, typename Domain, typename FeatureCurves>
+Feature_fidelity feature_fidelity(const HexMesh& mesh, const Domain& domain, const FeatureCurves& features,
+                                  double feature_angle = 30, double sample_spacing = 0)
+{
+  return feature_fidelity_with_tolerance(mesh, domain, features, features, feature_angle, 0.0, sample_spacing);
 }
 
 /*!
