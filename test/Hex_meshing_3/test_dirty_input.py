@@ -188,14 +188,21 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # its sharp edges at s / 2 left a cell below 0.3 without feature pillows, its first capture reaches
 # 0.334 with them (0.317 at the second without); t20_part's first leaves one, 0.354 at the second;
 # cube_nonmanifold's wedges at s / 8: 0.252 with pillows, 0.353 at the third without;
-# fandisk_crack: 0.212 with pillows, 0.325 without)
-CAPTURE_RETRIED = {"bunny", "cube_nonmanifold", "fandisk_crack", "t20_part"}
+# fandisk_crack: 0.212 with pillows, 0.325 without; since 8 smoothing sweeps instead of 12,
+# fandisk_crack and t20_part are captured once (0.350 and 0.360) and teapot twice (0.350))
+CAPTURE_RETRIED = {"bunny", "cube_nonmanifold", "teapot"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
-# than 30 degrees counts as mesh feature edges; cube 0 / 0)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.4, 0.7), "anchor_dupflip": (0.4, 0.7), "t20_part": (0.75, 0.85),
+# than 30 degrees counts as mesh feature edges; cube 0 / 0; with 8 smoothing sweeps anchor 0.33 /
+# 0.69, t20_part 0.70 / 0.74)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.4, 0.75), "anchor_dupflip": (0.4, 0.75), "t20_part": (0.75, 0.8),
                           "fandisk": (1.1, 8.6), "cube": (0.05, 0.05)}
+# the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
+# anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
+# fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.35, 0.75), "anchor_dupflip": (0.35, 0.75), "t20_part": (0.35, 0.8),
+                                   "fandisk": (0.6, 1.7), "cube": (0.05, 0.05)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -835,7 +842,8 @@ def main():
             # with 5 cells across its thin parts (its ears) none of the four captures is free of
             # cells concave for OpenFOAM or at faces failing the tet decomposition: the one kept
             # runs a fifth time, with the removal
-            j5, case5 = once_run("thin5", ["--thin-cells", "5"])
+            # (at 12 smoothing sweeps: at the default 8 one capture is free of them)
+            j5, case5 = once_run("thin5", ["--thin-cells", "5", "--smoothing-sweeps", "12"])
             b5, q5 = j5["boundary"], j5["quality"]
             ok5, flags5 = all_geometry_ok(case5)
             check(b5["capture_tries"] == 5 and b5["foam_fault_cells"] > 0 and q5["concave_cells"] == 0 and
@@ -847,8 +855,10 @@ def main():
             # concave for OpenFOAM (every cell above 0.3): with the retries another capture has none
             # and no buffer cell goes; without them, the one capture removes the buffer cells
             # checkMesh -allGeometry would flag (with pillows, the one capture falls to 0.284)
-            j1, _ = once_run("thin3", ["--thin-cells", "3"])
-            j0, case0 = once_run("thin3_once", ["--thin-cells", "3", "--capture-retry-cells", "0", "--no-feature-pillows"])
+            # (at 12 smoothing sweeps: at the default 8 the retries keep the first capture)
+            j1, _ = once_run("thin3", ["--thin-cells", "3", "--smoothing-sweeps", "12"])
+            j0, case0 = once_run("thin3_once", ["--thin-cells", "3", "--capture-retry-cells", "0", "--no-feature-pillows",
+                                                "--smoothing-sweeps", "12"])
             sj0 = j0["quality"]["scaled_jacobian"]["min"]
             once = j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0
             c0, c1 = j0["quality"]["concave_cells"], j1["quality"]["concave_cells"]
@@ -934,6 +944,14 @@ def main():
                   ff["input_to_mesh"] <= lim_i * s_ and ff["mesh_to_input"] <= lim_m * s_,
                   f"{stem}: feature fidelity {sz(ff['input_to_mesh'])} / {sz(ff['mesh_to_input'])} x surface size, "
                   f"within {lim_i} / {lim_m} (no regression; the goal is 0.25)")
+        if stem in FEATURE_FIDELITY_TOLERANT_FLOOR:
+            lim_i, lim_m = FEATURE_FIDELITY_TOLERANT_FLOOR[stem]
+            ft = ff["within_tolerance"]
+            check(ft["tolerance_degrees"] == 10 and ft["input_to_mesh"] is not None and ft["mesh_to_input"] is not None and
+                  ft["input_to_mesh"] <= min(lim_i * s_, ff["input_to_mesh"]) and
+                  ft["mesh_to_input"] <= min(lim_m * s_, ff["mesh_to_input"]),
+                  f"{stem}: feature fidelity within 10 degrees {sz(ft['input_to_mesh'])} / {sz(ft['mesh_to_input'])} x "
+                  f"surface size, within {lim_i} / {lim_m} and no more than the strict figures")
         check(fi["faces_beyond_surface_size"] <= fi["faces_beyond_half_surface_size"] <= fi["faces_beyond_quarter_surface_size"]
               <= fi["surface_faces"] and (fi["faces_beyond_quarter_surface_size"] == 0) == (fi["mesh_to_input_max"] <= 0.25 * s_),
               f"{stem}: the counts of far faces agree with the largest face distance")

@@ -193,7 +193,9 @@ def main():
                        "--region", "seed:-0.9,-0.9,-0.9"], "eight_external_staircase"),
         ("cube.off", ["--size", "0.3", "--surface-size", "0.075", "--no-feature-pillows"], "cube"),
         ("cube.off", ["--size", "0.3", "--surface-size", "0.075"], "cube_pillows"),
-        ("fandisk.off", ["--size", "0.1", "--surface-size", "0.025", "--feature-pillows"], "fandisk_pillows"),
+        # (at 12 smoothing sweeps the capture with pillows is kept; at the default 8 a retry without)
+        ("fandisk.off", ["--size", "0.1", "--surface-size", "0.025", "--feature-pillows", "--smoothing-sweeps", "12"],
+         "fandisk_pillows"),
         ("anchor.off", ["--size", "0.12", "--surface-size", "0.03"], "anchor"),
         ("bunny.off", [], "bunny_default"),
         ("elephant.off", ["--size", "0.1", "--surface-size", "0.025"], "elephant"),
@@ -314,6 +316,12 @@ def main():
         fp = results["fandisk_pillows"][1]
         check(0 < fp["boundary"]["pillow_cells"] < pil["boundary"]["pillow_cells"] * 10,
               f"fandisk: some pillows ({fp['boundary']['pillow_cells']} cells)")
+        # --smoothing-sweeps bounds the capture's main sweeps (8 by default)
+        fd = results["fandisk"][1]
+        check(fp["options"].get("smoothing_sweeps") == 12 and fd["options"].get("smoothing_sweeps") == 8 and
+              0 < fd["boundary"]["optimisation_passes"] <= 8 < fp["boundary"]["optimisation_passes"] <= 12,
+              f"--smoothing-sweeps: the report gives 12 and 8 (default), and at most that many sweeps ran "
+              f"({fp['boundary']['optimisation_passes']}, {fd['boundary']['optimisation_passes']})")
 
     # per-part surface sizes: a unit box whose top face is the part "lid"; as a staircase the cells
     # keep their boxes, so the sizes can be read off exactly
@@ -412,6 +420,8 @@ def main():
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--region", "seed:9,9,9"], 2, "outside the meshing box", "seed outside")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--region", "seed:0.0368,0.0509,-0.0874"], 2, "inside a body", "seed inside")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--size", "-1"], 1, "--size: must be a positive number", "negative size")
+    expect([eight, "-o", os.path.join(e, "x.vtu"), "--smoothing-sweeps", "0"], 1, "--smoothing-sweeps: Value 0 not in range",
+           "no smoothing sweep")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--box", "1,1,1,0,0,0"], 1, "min must be below", "inverted box")
     expect([eight, "-o", os.path.join(e, "x.vtu"), "--surface-size", "0.02:0.04"], 1, "HFINE must not exceed H",
            "curvature size above the surface size")

@@ -213,6 +213,7 @@ int main(int argc, char** argv)
   std::size_t max_cells = 0;
   bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = true;
   std::size_t capture_retry_cells = 200000;
+  int smoothing_sweeps = 8;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
                                          "(repeatable)")->required();
@@ -265,6 +266,8 @@ int main(int argc, char** argv)
                  "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 4 times: without the feature pillows, then with other weights of the feature paths) on meshes of at "
                  "most this many cells, and the mesh with the fewest checkMesh -allGeometry faults, then cells below 0.3 is "
                  "kept; 0: never (default 200000)");
+  app.add_option("--smoothing-sweeps", smoothing_sweeps, "the boundary capture's main optimisation sweeps at most: more "
+                 "raise the worst cells a little, at a cost in time (default 8)")->check(CLI::Range(1, 1000));
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-size", patch_size_rules, "REGEX=H[:HFINE]: cut cells meeting the input parts whose whole name "
@@ -490,13 +493,15 @@ int main(int argc, char** argv)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
                                                                .feature_pillows(feature_pillows)
-                                                               .capture_retry_cells(capture_retry_cells).visitor(std::ref(progress)));
+                                                               .capture_retry_cells(capture_retry_cells).smoothing_sweeps(smoothing_sweeps)
+                                                               .visitor(std::ref(progress)));
     else
       status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
                                                                .feature_pillows(feature_pillows)
-                                                               .capture_retry_cells(capture_retry_cells).visitor(std::ref(progress)));
+                                                               .capture_retry_cells(capture_retry_cells).smoothing_sweeps(smoothing_sweeps)
+                                                               .visitor(std::ref(progress)));
     if(!quiet && !staircase)
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
                 << stats.buffer_cells << " buffer cells (" << stats.pillow_cells << " in feature pillows), " << stats.surface_vertices << " vertices on the surface ("
@@ -680,7 +685,7 @@ int main(int argc, char** argv)
       j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
                       {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
                       {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
-                      {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells},
+                      {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells}, {"smoothing_sweeps", smoothing_sweeps},
                       {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},

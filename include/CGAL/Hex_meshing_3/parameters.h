@@ -27,6 +27,7 @@ enum feature_curves_t { feature_curves };
 enum feature_pillows_t { feature_pillows };
 enum polish_worst_cells_t { polish_worst_cells };
 enum capture_retry_cells_t { capture_retry_cells };
+enum smoothing_sweeps_t { smoothing_sweeps };
 } // namespace internal_np
 
 /// \cond SKIP_IN_MANUAL
@@ -74,6 +75,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::capture_retry_cells_t, Named_parameters>
   capture_retry_cells(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::smoothing_sweeps_t, Named_parameters>
+  smoothing_sweeps(const V& v) const { return { v, *this }; }
 };
 /// \endcond
 
@@ -126,6 +131,11 @@ Named_parameters<V, internal_np::polish_worst_cells_t> polish_worst_cells(const 
 /// 200,000 by default
 template <typename V>
 Named_parameters<V, internal_np::capture_retry_cells_t> capture_retry_cells(const V& v) { return { v }; }
+
+/// the capture's main optimisation sweeps over the buffer's vertices at most (`int`, >= 1; see
+/// `make_hex_mesh_3()`); 8 by default
+template <typename V>
+Named_parameters<V, internal_np::smoothing_sweeps_t> smoothing_sweeps(const V& v) { return { v }; }
 
 /// \cond SKIP_IN_MANUAL
 template <typename NP> NP combine(const NP& np) { return np; }

@@ -420,7 +420,7 @@ public:
   struct Options
   {
     double target_quality = 0.6;   ///< cells below this minimum scaled Jacobian are optimised
-    int passes = 12;               ///< optimisation sweeps at most
+    int passes = 8;                ///< optimisation sweeps at most (`smoothing_sweeps`)
     int final_passes = 10;          ///< sweeps after vertices were released
     int reattach_rounds = 10;      ///< rounds moving released vertices back towards the surface
     double snap_weight = 4;        ///< bias of the feature paths towards their curve
