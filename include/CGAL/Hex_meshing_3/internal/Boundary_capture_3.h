@@ -450,6 +450,7 @@ public:
     double loosen_corner = 0.1;             ///< ... and with its corner vertices free to leave their corner's point by at most this (x local size; 0: never)
     double second_polish_pyramid_weight = 2;   ///< the second polish counts the face pyramids at this many times their value (1: no second polish)
     int fidelity_passes = 3;                ///< sweeps of `fidelity_polish()` (0: none)
+    double sheet_cap_quality = 0.2;         ///< a sheet's cap vertex goes onto the sheet's border if no cell falls below min(its quality, this) (and none turns concave, no face split worsens)
     double fidelity_distance = 0.2;         ///< ... over the top faces whose centre is farther than this (x the smallest local size of their corners) from the surface
     bool remove_foam_faults = true;         ///< the cleanup removes the buffer cells that checkMesh -allGeometry would find concave or at a face failing the tet decomposition (on the points of the OpenFOAM export)
   };
@@ -2352,9 +2353,18 @@ private:
         affected_cells(v, cells);
         q_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
+        // (a sheet's cap vertex is not invalid where it is: no cell may fall below
+        // `sheet_cap_quality` for it, nor be made concave for OpenFOAM or get a face split worse
+        // than min(its own, `min_face_split_quality`): at 0.2 without those two guards, a face
+        // failing the tet decomposition was left on the motorBike)
+        const bool cap = kind[v] == CAP;
+        if(cap) {
+          cap_split_old.resize(cells.size());
+          cap_concave_old.resize(cells.size());
+          for(std::size_t i = 0; i < cells.size(); ++i) { cap_split_old[i] = cell_split(cells[i]); cap_concave_old[i] = char(cell_concave(cells[i])); }
+        }
         bool done = false;
-        // (a sheet's cap vertex is not invalid where it is: no cell may fall below 0.35 for it)
-        const double keep = kind[v] == CAP ? opt.polish_quality : opt.keep_quality;
+        const double keep = cap ? opt.sheet_cap_quality : opt.keep_quality;
         for(double t : {1.0, 0.5, 0.25}) {
           const Vec3 y = add(x0, mul(sub(target, x0), t));
           move(v, t == 1.0 || goal == SURFACE ? y : constrain(v, y));
@@ -2363,6 +2373,8 @@ private:
             const double floor = (std::min)(q_old[i], keep);
             ok = cell_quality_above(cells[i], floor) >= floor;
           }
+          for(std::size_t i = 0; cap && i < cells.size() && ok; ++i)
+            ok = cell_split(cells[i]) >= (std::min)(cap_split_old[i], opt.min_face_split_quality) && (cap_concave_old[i] || !cell_concave(cells[i]));
           if(!ok) continue;
           if(t == 1.0) {
             if(kind[v] == CAP) --rep.cap_vertices;   // on its sheet's border now
@@ -3244,6 +3256,8 @@ private:
   double box_lo[3], box_hi[3];
   std::vector<Vec3> P;
   std::vector<double> split_old;   // improve() in the polish: the cells' face-split qualities before the move
+  std::vector<double> cap_split_old;   // optimise(): a sheet cap vertex's cells' face-split qualities before its move
+  std::vector<char> cap_concave_old;   // and whether they were concave for OpenFOAM
   std::vector<double> q_old;
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
