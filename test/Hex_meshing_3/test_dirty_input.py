@@ -857,6 +857,8 @@ def main():
             # and no buffer cell goes; without them, the one capture removes the buffer cells
             # checkMesh -allGeometry would flag (with pillows, the one capture falls to 0.284)
             # (at 12 smoothing sweeps: at the default 8 the retries keep the first capture)
+            # (every cell above 0.3 until the joint moves of released vertices, which may take a
+            # neighbour's cell down to 0.25: 0.265 since)
             j1, _ = once_run("thin3", ["--thin-cells", "3", "--smoothing-sweeps", "12"])
             j0, case0 = once_run("thin3_once", ["--thin-cells", "3", "--capture-retry-cells", "0", "--no-feature-pillows",
                                                 "--smoothing-sweeps", "12"])
@@ -864,10 +866,10 @@ def main():
             once = j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0
             c0, c1 = j0["quality"]["concave_cells"], j1["quality"]["concave_cells"]
             r0, r1 = j0["boundary"]["foam_fault_cells"], j1["boundary"]["foam_fault_cells"]
-            check(once and r0 > 0 and sj0 >= 0.3 and c0 == 0 and j0["quality"]["face_tet_errors"] == 0 and
+            check(once and r0 > 0 and sj0 >= 0.25 and c0 == 0 and j0["quality"]["face_tet_errors"] == 0 and
                   j1["boundary"]["capture_tries"] > 1 and c1 == 0 and r1 == 0,
                   f"{stem} --thin-cells 3: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), "
-                  f"minimum {sj0:.3f} (>= 0.3), and removes {r0} buffer cell(s) at OpenFOAM faults (> 0), leaving {c0} "
+                  f"minimum {sj0:.3f} (>= 0.25), and removes {r0} buffer cell(s) at OpenFOAM faults (> 0), leaving {c0} "
                   f"concave cells and {j0['quality']['face_tet_errors']} faces failing the tet decomposition; with the "
                   f"retries ({j1['boundary']['capture_tries']} captures) {c1} concave, {r1} removed")
             ok0, flags0 = all_geometry_ok(case0)
