@@ -667,8 +667,9 @@ def main():
         check(rc.returncode == 0 and "Mesh OK" in rc.stdout, f"{label}: checkMesh -allTopology: Mesh OK")
         if not extra:   # the buffer wraps round the rim: its cap vertices go onto the rim where they can
             fi, bd = j["fidelity"], j["boundary"]
-            # (233 and 0.427 while no cell could fall below 0.35 for them, 203 and 0.284 at 0.2)
-            check(fi["cap_area"] < 0.32 and bd["cap_vertices"] < 220,
+            # (233 and 0.427 while no cell could fall below 0.35 for them, 203 and 0.284 at 0.2,
+            # 186 and 0.279 with the joint moves)
+            check(fi["cap_area"] < 0.3 and bd["cap_vertices"] < 200,
                   f"{label}: the cap round the rim shrinks ({bd['cap_vertices']} cap vertices, cap area {fi['cap_area']:.3f}; "
                   f"290 and 0.533 while no cap vertex moved onto the rim)")
 

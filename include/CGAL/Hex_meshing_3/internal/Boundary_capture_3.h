@@ -2407,10 +2407,15 @@ private:
     if(jp > 0) {
       std::vector<Index> around, nb, all, cu;
       std::vector<std::pair<Index, Vec3>> saved;
-      std::vector<double> q0;
+      std::vector<double> q0, s0;
       std::vector<char> c0;
-      for(Index v : released_list) {
-        if(kind[v] != RELEASED || cancelled) continue;
+      // (and the sheets' cap vertices still off their border, with their own floor and the
+      // face-split guard of the rounds)
+      std::vector<Index> joint_list = released_list;
+      joint_list.insert(joint_list.end(), sheet_caps.begin(), sheet_caps.end());
+      for(Index v : joint_list) {
+        if((kind[v] != RELEASED && kind[v] != CAP) || cancelled) continue;
+        const bool is_cap = kind[v] == CAP;
         const Vec3 x0 = P[v];
         const int r = region_of_point(x0);
         const Vec3 target = clamp_planes(v, closest_on_surface(x0, r));
@@ -2426,6 +2431,8 @@ private:
         q0.resize(all.size());
         c0.resize(all.size());
         for(std::size_t i = 0; i < all.size(); ++i) { q0[i] = cell_quality(all[i]); c0[i] = char(cell_concave(all[i])); }
+        s0.resize(all.size());
+        if(is_cap) for(std::size_t i = 0; i < all.size(); ++i) s0[i] = cell_split(all[i]);
         saved.clear();
         saved.push_back({v, x0});
         for(Index u : nb) saved.push_back({u, P[u]});
@@ -2438,9 +2445,11 @@ private:
         bool ok = true;
         for(std::size_t i = 0; i < all.size() && ok; ++i) {
           const double q = cell_quality(all[i]);
-          ok = q > 0 && q >= (std::min)(q0[i], joint_floor) && (c0[i] || !cell_concave(all[i]));
+          ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : joint_floor) && (c0[i] || !cell_concave(all[i]));
         }
+        for(std::size_t i = 0; is_cap && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
         if(ok) {
+          if(is_cap) --rep.cap_vertices;
           kind[v] = SURFACE;
           vregion[v] = r;
           for(Index c : all) if(cell_quality(c) < opt.target_quality) low.push_back(c);
