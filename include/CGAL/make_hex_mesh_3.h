@@ -204,10 +204,10 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   \cgalParamNBegin{smoothing_sweeps}
  *     \cgalParamDescription{the capture's main optimisation sweeps over the buffer's vertices at
  *       most (untangling and smoothing, before the vertices that could not stay valid are released
- *       and brought back; fewer if a sweep moves no vertex). More sweeps raise the worst cells a
- *       little and cost time: on the motorBike, 12 sweeps take 4.8 s more than 8 and leave 471
- *       cells below 0.3 instead of 405; on the 15 test surfaces both reach 0.3 everywhere. Values
- *       below 1 count as 1}
+ *       and brought back; fewer if a sweep moves no vertex). More sweeps cost time and do not
+ *       always help: on the motorBike 12 sweeps leave 471 cells below 0.3 against 405 at 8, for
+ *       0.7 to 4.8 s more (two machines); on the 15 test surfaces both reach 0.3 everywhere.
+ *       Values below 1 count as 1}
  *     \cgalParamType{`int`}
  *     \cgalParamDefault{8}
  *   \cgalParamNEnd

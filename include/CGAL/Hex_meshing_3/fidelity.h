@@ -394,14 +394,14 @@ std::vector<Segment_3> input_feature_segments(const FeatureCurves& features)
   return input;
 }
 
-// the feature edges of the mesh boundary's polygons at `feature_angle` degrees (see
-// `feature_fidelity()`), as segments
+// the feature edges of the mesh boundary's polygons (`boundary_polygons(mesh)`) at
+// `feature_angle` degrees (see `feature_fidelity()`), as segments
 template <typename Segment_3, typename HexMesh>
-std::vector<Segment_3> mesh_feature_segments(const HexMesh& mesh, double feature_angle)
+std::vector<Segment_3> mesh_feature_segments(const HexMesh& mesh, const std::vector<std::vector<std::uint32_t>>& polys,
+                                             double feature_angle)
 {
   typedef std::array<double, 3> V;
   auto vec = [](const auto& p) -> V { return {{CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())}}; };
-  const std::vector<std::vector<std::uint32_t>> polys = internal::boundary_polygons(mesh);
   std::vector<V> normal(polys.size());
   for(std::size_t f = 0; f < polys.size(); ++f) {
     const auto& q = mesh.boundary_faces[f].vertices;
@@ -508,12 +508,13 @@ Feature_fidelity feature_fidelity_with_tolerance(const HexMesh& mesh, const Doma
   Feature_fidelity r;
   const std::vector<Segment_3> input = internal::input_feature_segments<Segment_3>(features);
   r.input_feature_edges = input.size();
-  const std::vector<Segment_3> meshed = internal::mesh_feature_segments<Segment_3>(mesh, feature_angle);
+  const std::vector<std::vector<std::uint32_t>> polys = internal::boundary_polygons(mesh);
+  const std::vector<Segment_3> meshed = internal::mesh_feature_segments<Segment_3>(mesh, polys, feature_angle);
   r.mesh_feature_edges = meshed.size();
   // the other sides' sets, at the lower angle (the same sets without a tolerance)
   const bool loose = tolerance > 0;
   const std::vector<Segment_3> loose_input = loose ? internal::input_feature_segments<Segment_3>(loose_features) : std::vector<Segment_3>();
-  const std::vector<Segment_3> loose_meshed = loose ? internal::mesh_feature_segments<Segment_3>(mesh, feature_angle - tolerance) : std::vector<Segment_3>();
+  const std::vector<Segment_3> loose_meshed = loose ? internal::mesh_feature_segments<Segment_3>(mesh, polys, feature_angle - tolerance) : std::vector<Segment_3>();
 
   // sample spacing
   auto mean_length = [](const std::vector<Segment_3>& segs) {
@@ -561,7 +562,6 @@ Feature_fidelity feature_fidelity_with_tolerance(const HexMesh& mesh, const Doma
   const auto& corners = features.corners();
   r.corners = corners.size();
   if(corners.empty()) return r;
-  const std::vector<std::vector<std::uint32_t>> polys = internal::boundary_polygons(mesh);
   std::vector<Point_3> bv;
   {
     std::vector<std::uint32_t> ids;

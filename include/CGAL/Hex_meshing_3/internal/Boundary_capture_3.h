@@ -2331,6 +2331,8 @@ private:
     std::vector<Index> released_list;
     for(Index v = 0; v < P.size(); ++v) if(kind[v] == RELEASED) released_list.push_back(v);
     std::vector<std::pair<Index, std::size_t>> todo;   // vertex, its entry in unsnapped_list (or none)
+    std::vector<double> cap_split_old;   // a sheet cap vertex's cells' face-split qualities before its move
+    std::vector<char> cap_concave_old;   // and whether they were concave for OpenFOAM
     for(Index v : released_list) todo.push_back({v, std::size_t(-1)});
     for(std::size_t i = 0; i < unsnapped_list.size(); ++i) todo.push_back({unsnapped_list[i].v, i});
     for(Index v : sheet_caps) todo.push_back({v, std::size_t(-1)});
@@ -2402,9 +2404,7 @@ private:
     // if every cell of theirs is then valid, at least min(its quality, `joint_quality`) and not
     // concave for OpenFOAM where it was not, else everything goes back. (At 0.2 the motorBike
     // got 198 more cells below 0.3, at 0.3 fandisk kept its far faces; see the manual.)
-    const int jp = opt.joint_passes;
-    const double joint_floor = opt.joint_quality;
-    if(jp > 0) {
+    if(opt.joint_passes > 0) {
       std::vector<Index> around, nb, all, cu;
       std::vector<std::pair<Index, Vec3>> saved;
       std::vector<double> q0, s0;
@@ -2437,7 +2437,7 @@ private:
         saved.push_back({v, x0});
         for(Index u : nb) saved.push_back({u, P[u]});
         move(v, target);
-        for(int pass = 0; pass < jp; ++pass) {
+        for(int pass = 0; pass < opt.joint_passes; ++pass) {
           bool any = false;
           for(Index u : nb) { new_epoch(); any = improve(u, cu) || any; }
           if(!any) break;
@@ -2445,7 +2445,7 @@ private:
         bool ok = true;
         for(std::size_t i = 0; i < all.size() && ok; ++i) {
           const double q = cell_quality(all[i]);
-          ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : joint_floor) && (c0[i] || !cell_concave(all[i]));
+          ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : opt.joint_quality) && (c0[i] || !cell_concave(all[i]));
         }
         for(std::size_t i = 0; is_cap && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
         if(ok) {
@@ -3321,8 +3321,6 @@ private:
   double box_lo[3], box_hi[3];
   std::vector<Vec3> P;
   std::vector<double> split_old;   // improve() in the polish: the cells' face-split qualities before the move
-  std::vector<double> cap_split_old;   // optimise(): a sheet cap vertex's cells' face-split qualities before its move
-  std::vector<char> cap_concave_old;   // and whether they were concave for OpenFOAM
   std::vector<double> q_old;
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
