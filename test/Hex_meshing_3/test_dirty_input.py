@@ -162,6 +162,12 @@ NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_no
 NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight", "fin_slot",
                                        "t20_part"}
 FIDELITY_MOVES = {"cylinder", "eight"}
+# where that goal is not met yet: at most this many faces beyond it (regression guards a little
+# above the figures of 2026-12-04 at fb28a15: bunny 16, elephant 46, elephant-with-holes 38,
+# fandisk 6 (10 before the joint moves' second target and round), fandisk_crack 4, rotor 137,
+# teapot 75; the meshes change from commit to commit in ways that move a few faces either way)
+FAR_FACES_AT_MOST = {"bunny": 20, "elephant": 52, "elephant-with-holes": 44, "fandisk": 8, "fandisk_crack": 6,
+                     "rotor": 150, "teapot": 85}
 # some of the files where the polish's joint moves let curve or corner vertices off their feature
 # (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
 LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
@@ -1009,6 +1015,12 @@ def main():
             check(fi["faces_beyond_quarter_surface_size"] == 0,
                   f"{stem}: no boundary face farther than a quarter of the surface size from the input (farthest "
                   f"{fi['mesh_to_input_max'] / s_:.2f} x)")
+        if stem in FAR_FACES_AT_MOST:
+            check(fi["faces_beyond_quarter_surface_size"] <= FAR_FACES_AT_MOST[stem],
+                  f"{stem}: {fi['faces_beyond_quarter_surface_size']} boundary faces farther than a quarter of the surface "
+                  f"size from the input, at most {FAR_FACES_AT_MOST[stem]} (no regression; the goal is none)")
+        check(stem in NO_FACE_BEYOND_QUARTER_SURFACE_SIZE or stem in FAR_FACES_AT_MOST,
+              f"{stem}: has a far-face figure to meet (none, or a ceiling in FAR_FACES_AT_MOST)")
         if stem in FIDELITY_MOVES:
             check(j["boundary"]["fidelity_moves"] > 0, f"{stem}: the fidelity polish moved vertices ({j['boundary']['fidelity_moves']})")
         if stem in NO_FACE_BEYOND_HALF_SURFACE_SIZE:
