@@ -2409,13 +2409,14 @@ private:
       std::vector<std::pair<Index, Vec3>> saved;
       std::vector<double> q0, s0;
       std::vector<char> c0;
-      // v goes to the surface point closest to it (or, with `from_neighbours`, to the mean of its
-      // surface neighbours) while its neighbours make room; true if kept
-      auto joint_move = [&](Index v, bool from_neighbours) {
+      // v goes to the surface point closest to it, else to the one closest to the mean of its
+      // surface neighbours, while its neighbours make room (their cells and baselines gathered
+      // once for both); true if kept
+      auto joint_move = [&](Index v) {
         const bool is_cap = kind[v] == CAP;
         const Vec3 x0 = P[v];
         const int r = region_of_point(x0);
-        const Vec3 target = clamp_planes(v, closest_on_surface(from_neighbours ? smoothing_target(v) : x0, r));
+        const Vec3 targets[2] = {clamp_planes(v, closest_on_surface(x0, r)), clamp_planes(v, closest_on_surface(smoothing_target(v), r))};
         affected_cells(v, around);
         nb.clear();
         for(Index c : around) for(Index w : m.hexahedra[c]) if(w != v && movable(w)) nb.push_back(w);
@@ -2433,27 +2434,31 @@ private:
         saved.clear();
         saved.push_back({v, x0});
         for(Index u : nb) saved.push_back({u, P[u]});
-        move(v, target);
-        for(int pass = 0; pass < opt.joint_passes; ++pass) {
-          bool any = false;
-          for(Index u : nb) { new_epoch(); any = improve(u, cu) || any; }
-          if(!any) break;
-        }
-        bool ok = true;
-        for(std::size_t i = 0; i < all.size() && ok; ++i) {
-          const double q = cell_quality(all[i]);
-          ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : opt.joint_quality) && (c0[i] || !cell_concave(all[i]));
-        }
-        for(std::size_t i = 0; is_cap && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
-        if(ok) {
-          if(is_cap) --rep.cap_vertices;
-          kind[v] = SURFACE;
-          vregion[v] = r;
-          for(Index c : all) if(cell_quality(c) < opt.target_quality) low.push_back(c);
-        } else
+        for(const Vec3& target : targets) {
+          move(v, target);
+          for(int pass = 0; pass < opt.joint_passes; ++pass) {
+            bool any = false;
+            for(Index u : nb) { new_epoch(); any = improve(u, cu) || any; }
+            if(!any) break;
+          }
+          bool ok = true;
+          for(std::size_t i = 0; i < all.size() && ok; ++i) {
+            const double q = cell_quality(all[i]);
+            ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : opt.joint_quality) && (c0[i] || !cell_concave(all[i]));
+          }
+          for(std::size_t i = 0; is_cap && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
+          if(ok) {
+            if(is_cap) --rep.cap_vertices;
+            kind[v] = SURFACE;
+            vregion[v] = r;
+            for(Index c : all) if(cell_quality(c) < opt.target_quality) low.push_back(c);
+            new_epoch();
+            return true;
+          }
           for(auto it = saved.rbegin(); it != saved.rend(); ++it) move(it->first, it->second);
-        new_epoch();
-        return ok;
+          new_epoch();
+        }
+        return false;
       };
       // (and the sheets' cap vertices still off their border, with their own floor and the
       // face-split guard of the rounds)
@@ -2469,7 +2474,7 @@ private:
       for(int round = 0; round < 2 && !cancelled; ++round) {
         std::size_t kept = 0;
         for(Index v : joint_list)
-          if((kind[v] == RELEASED || kind[v] == CAP) && !cancelled && (joint_move(v, false) || joint_move(v, true))) ++kept;
+          if((kind[v] == RELEASED || kind[v] == CAP) && !cancelled && joint_move(v)) ++kept;
         if(kept == 0) break;
       }
     }
