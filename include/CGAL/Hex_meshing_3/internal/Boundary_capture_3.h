@@ -2052,6 +2052,14 @@ private:
     return sub(P[t], mul(n, opt.buffer_thickness * hloc[v] / l));
   }
 
+  // `trial_order`: the positions in `q_old`, its lowest values first
+  void order_worst_first()
+  {
+    trial_order.resize(q_old.size());
+    for(std::size_t i = 0; i < q_old.size(); ++i) trial_order[i] = i;
+    std::sort(trial_order.begin(), trial_order.end(), [&](std::size_t a, std::size_t b) { return q_old[a] < q_old[b] || (q_old[a] == q_old[b] && a < b); });
+  }
+
   // returns true if the vertex moved
   bool improve(Index v, std::vector<Index>& cells)
   {
@@ -2060,6 +2068,8 @@ private:
     q_old.resize(cells.size());
     double f0 = 1, m0 = 0;
     for(std::size_t i = 0; i < cells.size(); ++i) { q_old[i] = current_quality(cells[i]); f0 = (std::min)(f0, q_old[i]); m0 += q_old[i]; }
+    order_worst_first();
+    trial_q.resize(cells.size());
     // in the repair, the scaled Jacobian is guarded on its own too (a cell whose split is bad has
     // a low quality, which must not let its scaled Jacobian fall that low)
     base_old.resize(cells.size());
@@ -2088,18 +2098,25 @@ private:
       move(v, x);
       // (the rule below takes no trial with a cell below max(f0, fb): none is looked at further)
       const double need = (std::max)(f0, fb - 1e-12);
-      double f = 1, mean = 0;
-      for(std::size_t i = 0; i < cells.size(); ++i) {
+      // (the worst cells first: most trials fail on one of them; the minimum and the sum are
+      // taken in the cells' order)
+      // A cell that fails a trial is looked at first in the next ones.
+      for(std::size_t k = 0; k < trial_order.size(); ++k) {
+        const std::size_t i = trial_order[k];
         const double floor = (std::max)((std::min)(q_old[i], opt.keep_quality), need);
         double sj = 1;
         const double q = cell_quality_above(cells[i], floor, guard_sj ? &sj : nullptr);
-        if(q < floor) return;
-        if(guard_sj && sj < (std::min)(base_old[i], sj_floor)) return;
-        if(use_polish && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) return;
-        if(use_polish && second_polish && !conc_old[i] && cell_concave(cells[i])) return;
-        f = (std::min)(f, q);
-        mean += q;
+        const bool fails = q < floor || (guard_sj && sj < (std::min)(base_old[i], sj_floor)) ||
+                           (use_polish && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) ||
+                           (use_polish && second_polish && !conc_old[i] && cell_concave(cells[i]));
+        if(fails) {
+          std::rotate(trial_order.begin(), trial_order.begin() + std::ptrdiff_t(k), trial_order.begin() + std::ptrdiff_t(k) + 1);
+          return;
+        }
+        trial_q[i] = q;
       }
+      double f = 1, mean = 0;
+      for(std::size_t i = 0; i < cells.size(); ++i) { f = (std::min)(f, trial_q[i]); mean += trial_q[i]; }
       if((use_face_splits || use_split_warp || use_polish) && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
       if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; }
@@ -2148,17 +2165,21 @@ private:
     const Vec3 x0 = P[v];
     const double h = local_size(v);
     const double delta2 = 1e-6 * h * h * h * h * h * h;
-    auto energy = [&]() {
+    // the energy of the cells, or a value at least `limit` once the sum reaches it (the terms are
+    // not negative: a partial sum at least `limit` means the whole one is)
+    auto energy = [&](double limit) {
       double e = 0;
       for(Index c : cells) {
         Vec3 x[8];
         for(int k = 0; k < 8; ++k) x[k] = P[m.hexahedra[c][k]];
         e += hex_shape_energy(x, delta2);
+        if(e >= limit) return e;
       }
       return e;
     };
     q_old.resize(cells.size());
     for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = current_quality(cells[i]);
+    order_worst_first();
     // the hanging nodes that follow the vertex move by a fixed fraction of its displacement
     dep_weights.clear();
     if(!deps[v].empty()) {
@@ -2190,11 +2211,15 @@ private:
       if(norm(sub(x, x0)) < 1e-9 * h) continue;
       if(!on_rim && onto_hole_rim(v, x)) continue;
       move(v, x);
-      if(!(energy() < e0 * (1 - 1e-6))) continue;
+      const double enough = e0 * (1 - 1e-6);
+      if(!(energy(enough) < enough)) continue;
+      // (the worst cells first, and one that fails first in the next trials)
       bool ok = true;
-      for(std::size_t i = 0; i < cells.size() && ok; ++i) {
+      for(std::size_t k = 0; k < trial_order.size() && ok; ++k) {
+        const std::size_t i = trial_order[k];
         const double floor = (std::min)(q_old[i], opt.keep_quality);
         ok = cell_quality_above(cells[i], floor) >= floor;
+        if(!ok) std::rotate(trial_order.begin(), trial_order.begin() + std::ptrdiff_t(k), trial_order.begin() + std::ptrdiff_t(k) + 1);
       }
       if(ok) return true;
     }
@@ -3363,6 +3388,8 @@ private:
   std::vector<Vec3> P;
   std::vector<double> split_old;   // improve() in the polish: the cells' face-split qualities before the move
   std::vector<double> q_old;
+  std::vector<std::size_t> trial_order;   // improve(): its cells' positions, worst first
+  std::vector<double> trial_q;            // and their qualities at a trial point
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
   // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
