@@ -3062,9 +3062,11 @@ private:
             const double h = local_size(v);
             move(v, constrain(v, sub(xs[i], mul(g[i], alpha * h / gmax))));
           }
+          // (the penalties are not negative: once their partial sum reaches the bound, the step fails)
+          const double bound = e * (1 - 1e-6);
           double e1 = 0;
-          for(std::size_t j = 0; j < nc; ++j) { ev1[j] = evaluate(j, vals.data()); e1 += ev1[j].pen; }
-          if(e1 < e * (1 - 1e-6) && guards_hold(ev1) && max_non_orthogonality(pc) <= nonortho_cap && no_new_concave()) {
+          for(std::size_t j = 0; j < nc && e1 < bound; ++j) { ev1[j] = evaluate(j, vals.data()); e1 += ev1[j].pen; }
+          if(e1 < bound && guards_hold(ev1) && max_non_orthogonality(pc) <= nonortho_cap && no_new_concave()) {
             e = e1;
             stepped = true;
             alpha0 = (std::min)(0.2, 2 * alpha);
