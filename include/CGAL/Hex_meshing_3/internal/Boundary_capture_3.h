@@ -2119,7 +2119,7 @@ private:
       for(std::size_t i = 0; i < cells.size(); ++i) { f = (std::min)(f, trial_q[i]); mean += trial_q[i]; }
       if((use_face_splits || use_split_warp || use_polish) && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
-      if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; }
+      if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; best_q = trial_q; }
     };
     const Vec3 s = smoothing_target(v);
     trial(s);
@@ -2152,6 +2152,7 @@ private:
     // a move must gain something measurable (else sweeps never end on round-off)
     const bool gain = fb > f0 + 1e-4 || mb > m0 + 1e-3;
     move(v, gain ? best : x0);
+    if(gain) moved_q = best_q;
     return gain;
   }
 
@@ -2215,10 +2216,12 @@ private:
       if(!(energy(enough) < enough)) continue;
       // (the worst cells first, and one that fails first in the next trials)
       bool ok = true;
+      moved_q.resize(cells.size());
       for(std::size_t k = 0; k < trial_order.size() && ok; ++k) {
         const std::size_t i = trial_order[k];
         const double floor = (std::min)(q_old[i], opt.keep_quality);
-        ok = cell_quality_above(cells[i], floor) >= floor;
+        moved_q[i] = cell_quality_above(cells[i], floor);
+        ok = moved_q[i] >= floor;
         if(!ok) std::rotate(trial_order.begin(), trial_order.begin() + std::ptrdiff_t(k), trial_order.begin() + std::ptrdiff_t(k) + 1);
       }
       if(ok) return true;
@@ -2261,6 +2264,8 @@ private:
         if(!(smooth_energy ? relax(v, cells) : improve(v, cells))) { failed[v] = clock; continue; }
         moved_at[v] = next_stamp();
         for(Index h : deps[v]) moved_at[h] = clock;
+        // (the cells' qualities at the new place, from the move's last trial)
+        for(std::size_t i = 0; i < cells.size(); ++i) { quality_cache[cells[i]] = moved_q[i]; quality_at[cells[i]] = clock; }
         ++moved;
         for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
       }
@@ -3392,6 +3397,10 @@ private:
   std::vector<double> q_old;
   std::vector<std::size_t> trial_order;   // improve(): its cells' positions, worst first
   std::vector<double> trial_q;            // and their qualities at a trial point
+  std::vector<double> best_q;             // ... at the best trial point
+  // after improve() or relax() moved a vertex: its cells' qualities at the new place (as
+  // `cell_quality()` gives them), for the cache of `current_quality()`
+  std::vector<double> moved_q;
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
   // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
