@@ -2733,15 +2733,27 @@ private:
     std::vector<Index> cells, work;
     std::vector<char> in_work(P.size(), 0), chosen(m.hexahedra.size(), 0);
     std::size_t total = 0;
+    swept_cells.clear();
     for(int pass = 0; pass < passes; ++pass) {
       std::fill(chosen.begin(), chosen.end(), 0);
       select(chosen);
+      swept_cells.clear();
       for(Index c = 0; c < m.hexahedra.size(); ++c)
         if(chosen[c]) for(Index v : m.hexahedra[c]) add_work_vertex(v, work, in_work);
       if(work.empty()) break;
       std::sort(work.begin(), work.end());
       std::size_t moved = 0;
-      for(Index v : work) { in_work[v] = 0; if(improve(v, cells)) ++moved; }
+      for(Index v : work) {
+        in_work[v] = 0;
+        if(!improve(v, cells)) continue;
+        ++moved;
+        swept_cells.insert(swept_cells.end(), cells.begin(), cells.end());
+        if(use_quality_cache) {   // (the polish: as in optimise()'s sweeps)
+          moved_at[v] = next_stamp();
+          for(Index h : deps[v]) moved_at[h] = clock;
+          for(std::size_t i = 0; i < cells.size(); ++i) { quality_cache[cells[i]] = moved_q[i]; quality_at[cells[i]] = clock; }
+        }
+      }
       total += moved;
       work.clear();
       if(moved == 0) break;
@@ -2808,8 +2820,19 @@ private:
     const double keep_before = opt.keep_quality, floor_before = sj_floor;
     opt.keep_quality = sj_floor = opt.polish_quality;
     use_polish = true;
+    // (each cell's quality is computed once, then again only where a move of the last sweep touched
+    // it; the cache of optimise() serves the moves, from a new epoch: the quality is the polish's)
+    use_quality_cache = !moved_at.empty();
+    struct Cache_off { bool& on; ~Cache_off() { on = false; } } cache_off{use_quality_cache};
+    if(use_quality_cache) epoch = next_stamp();
+    std::vector<char> below;
     rep.polish_moves += repair_sweeps([&](std::vector<char>& chosen) {
-      for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = cell_quality(c) < opt.polish_quality;
+      if(below.empty()) {
+        below.resize(m.hexahedra.size());
+        for(Index c = 0; c < m.hexahedra.size(); ++c) below[c] = cell_quality(c) < opt.polish_quality;
+      } else
+        for(Index c : swept_cells) below[c] = cell_quality(c) < opt.polish_quality;
+      chosen = below;
     }, opt.polish_passes);
     use_polish = false;
     opt.keep_quality = keep_before;
@@ -3401,6 +3424,8 @@ private:
   // after improve() or relax() moved a vertex: its cells' qualities at the new place (as
   // `cell_quality()` gives them), for the cache of `current_quality()`
   std::vector<double> moved_q;
+  // repair_sweeps(): the cells the moves of its last sweep touched (for its `select`)
+  std::vector<Index> swept_cells;
   std::vector<std::pair<Index, double>> dep_weights;
   // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
   // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
