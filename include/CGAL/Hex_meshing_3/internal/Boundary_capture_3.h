@@ -2475,22 +2475,31 @@ private:
         if(joint_failed_at[v] != never && !inputs_moved_since(all, joint_failed_at[v])) return false;
         q0.resize(all.size());
         c0.resize(all.size());
-        for(std::size_t i = 0; i < all.size(); ++i) { q0[i] = cell_quality(all[i]); c0[i] = char(cell_concave(all[i])); }
+        for(std::size_t i = 0; i < all.size(); ++i) { q0[i] = current_quality(all[i]); c0[i] = char(cell_concave(all[i])); }
         s0.resize(all.size());
         if(is_cap) for(std::size_t i = 0; i < all.size(); ++i) s0[i] = cell_split(all[i]);
         saved.clear();
         saved.push_back({v, x0});
         for(Index u : nb) saved.push_back({u, P[u]});
+        // (every move is stamped, and a neighbour's move leaves its cells' qualities in the cache,
+        // as in the sweeps: the cache stays valid)
+        auto stamp = [&](Index w) { moved_at[w] = next_stamp(); for(Index h : deps[w]) moved_at[h] = clock; };
         for(const Vec3& target : targets) {
           move(v, target);
+          stamp(v);
           for(int pass = 0; pass < opt.joint_passes; ++pass) {
             bool any = false;
-            for(Index u : nb) { new_epoch(); any = improve(u, cu) || any; }
+            for(Index u : nb) {
+              if(!improve(u, cu)) continue;
+              any = true;
+              stamp(u);
+              for(std::size_t i = 0; i < cu.size(); ++i) { quality_cache[cu[i]] = moved_q[i]; quality_at[cu[i]] = clock; }
+            }
             if(!any) break;
           }
           bool ok = true;
           for(std::size_t i = 0; i < all.size() && ok; ++i) {
-            const double q = cell_quality(all[i]);
+            const double q = current_quality(all[i]);
             ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : opt.joint_quality) && (c0[i] || !cell_concave(all[i]));
           }
           for(std::size_t i = 0; is_cap && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
@@ -2501,12 +2510,10 @@ private:
             ++joint_clock;
             joint_moved_at[v] = joint_clock;
             for(Index u : nb) joint_moved_at[u] = joint_clock;
-            for(Index c : all) if(cell_quality(c) < opt.target_quality) low.push_back(c);
-            new_epoch();
+            for(Index c : all) if(current_quality(c) < opt.target_quality) low.push_back(c);
             return true;
           }
-          for(auto it = saved.rbegin(); it != saved.rend(); ++it) move(it->first, it->second);
-          new_epoch();
+          for(auto it = saved.rbegin(); it != saved.rend(); ++it) { move(it->first, it->second); stamp(it->first); }
         }
         joint_failed_at[v] = joint_clock;
         return false;
