@@ -2098,9 +2098,9 @@ private:
       move(v, x);
       // (the rule below takes no trial with a cell below max(f0, fb): none is looked at further)
       const double need = (std::max)(f0, fb - 1e-12);
-      // (the worst cells first: most trials fail on one of them; the minimum and the sum are
-      // taken in the cells' order)
-      // A cell that fails a trial is looked at first in the next ones.
+      // (the worst cells first, and a cell that fails a trial first in the next ones: most
+      // trials fail on one of them; the minimum and the sum are taken in the cells' order, so
+      // the outcome is the same as in that order)
       for(std::size_t k = 0; k < trial_order.size(); ++k) {
         const std::size_t i = trial_order[k];
         const double floor = (std::max)((std::min)(q_old[i], opt.keep_quality), need);
@@ -2265,6 +2265,7 @@ private:
         moved_at[v] = next_stamp();
         for(Index h : deps[v]) moved_at[h] = clock;
         // (the cells' qualities at the new place, from the move's last trial)
+        CGAL_assertion(moved_q.size() == cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) { quality_cache[cells[i]] = moved_q[i]; quality_at[cells[i]] = clock; }
         ++moved;
         for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
