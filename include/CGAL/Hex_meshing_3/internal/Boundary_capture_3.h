@@ -2059,6 +2059,25 @@ private:
     for(std::size_t i = 0; i < q_old.size(); ++i) trial_order[i] = i;
     std::sort(trial_order.begin(), trial_order.end(), [&](std::size_t a, std::size_t b) { return q_old[a] < q_old[b] || (q_old[a] == q_old[b] && a < b); });
   }
+  // the cell at `trial_order[k]`, which failed a trial, is looked at first in the next ones
+  void fail_first(std::size_t k)
+  {
+    std::rotate(trial_order.begin(), trial_order.begin() + std::ptrdiff_t(k), trial_order.begin() + std::ptrdiff_t(k) + 1);
+  }
+  // a move of v (and of the hanging nodes that follow it) stamped, for the cache and the sweeps' skips
+  void stamp_move(Index v)
+  {
+    moved_at[v] = next_stamp();
+    for(Index h : deps[v]) moved_at[h] = clock;
+  }
+  // after improve() or relax() moved v (its cells `cells`): the move stamped, and the cells'
+  // qualities at the new place (`moved_q`) in the cache of `current_quality()`
+  void record_move(Index v, const std::vector<Index>& cells)
+  {
+    stamp_move(v);
+    CGAL_assertion(moved_q.size() == cells.size());
+    for(std::size_t i = 0; i < cells.size(); ++i) { quality_cache[cells[i]] = moved_q[i]; quality_at[cells[i]] = clock; }
+  }
 
   // returns true if the vertex moved
   bool improve(Index v, std::vector<Index>& cells)
@@ -2109,17 +2128,14 @@ private:
         const bool fails = q < floor || (guard_sj && sj < (std::min)(base_old[i], sj_floor)) ||
                            (use_polish && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) ||
                            (use_polish && second_polish && !conc_old[i] && cell_concave(cells[i]));
-        if(fails) {
-          std::rotate(trial_order.begin(), trial_order.begin() + std::ptrdiff_t(k), trial_order.begin() + std::ptrdiff_t(k) + 1);
-          return;
-        }
+        if(fails) { fail_first(k); return; }
         trial_q[i] = q;
       }
       double f = 1, mean = 0;
       for(std::size_t i = 0; i < cells.size(); ++i) { f = (std::min)(f, trial_q[i]); mean += trial_q[i]; }
       if((use_face_splits || use_split_warp || use_polish) && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
-      if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; best_q = trial_q; }
+      if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; moved_q = trial_q; }
     };
     const Vec3 s = smoothing_target(v);
     trial(s);
@@ -2152,7 +2168,6 @@ private:
     // a move must gain something measurable (else sweeps never end on round-off)
     const bool gain = fb > f0 + 1e-4 || mb > m0 + 1e-3;
     move(v, gain ? best : x0);
-    if(gain) moved_q = best_q;
     return gain;
   }
 
@@ -2222,7 +2237,7 @@ private:
         const double floor = (std::min)(q_old[i], opt.keep_quality);
         moved_q[i] = cell_quality_above(cells[i], floor);
         ok = moved_q[i] >= floor;
-        if(!ok) std::rotate(trial_order.begin(), trial_order.begin() + std::ptrdiff_t(k), trial_order.begin() + std::ptrdiff_t(k) + 1);
+        if(!ok) fail_first(k);
       }
       if(ok) return true;
     }
@@ -2262,11 +2277,7 @@ private:
         // a vertex that found no move, none of whose inputs moved since: it finds none again
         if(failed[v] >= epoch && last_input_move(v) <= failed[v]) continue;
         if(!(smooth_energy ? relax(v, cells) : improve(v, cells))) { failed[v] = clock; continue; }
-        moved_at[v] = next_stamp();
-        for(Index h : deps[v]) moved_at[h] = clock;
-        // (the cells' qualities at the new place, from the move's last trial)
-        CGAL_assertion(moved_q.size() == cells.size());
-        for(std::size_t i = 0; i < cells.size(); ++i) { quality_cache[cells[i]] = moved_q[i]; quality_at[cells[i]] = clock; }
+        record_move(v, cells);
         ++moved;
         for(Index c : cells) if(!mark[c]) { mark[c] = 1; touched.push_back(c); }
       }
@@ -2484,17 +2495,15 @@ private:
         for(Index u : nb) saved.push_back({u, P[u]});
         // (every move is stamped, and a neighbour's move leaves its cells' qualities in the cache,
         // as in the sweeps: the cache stays valid)
-        auto stamp = [&](Index w) { moved_at[w] = next_stamp(); for(Index h : deps[w]) moved_at[h] = clock; };
         for(const Vec3& target : targets) {
           move(v, target);
-          stamp(v);
+          stamp_move(v);
           for(int pass = 0; pass < opt.joint_passes; ++pass) {
             bool any = false;
             for(Index u : nb) {
               if(!improve(u, cu)) continue;
               any = true;
-              stamp(u);
-              for(std::size_t i = 0; i < cu.size(); ++i) { quality_cache[cu[i]] = moved_q[i]; quality_at[cu[i]] = clock; }
+              record_move(u, cu);
             }
             if(!any) break;
           }
@@ -2514,7 +2523,7 @@ private:
             for(Index c : all) if(current_quality(c) < opt.target_quality) low.push_back(c);
             return true;
           }
-          for(auto it = saved.rbegin(); it != saved.rend(); ++it) { move(it->first, it->second); stamp(it->first); }
+          for(auto it = saved.rbegin(); it != saved.rend(); ++it) { move(it->first, it->second); stamp_move(it->first); }
         }
         joint_failed_at[v] = joint_clock;
         return false;
@@ -2756,11 +2765,7 @@ private:
         if(!improve(v, cells)) continue;
         ++moved;
         swept_cells.insert(swept_cells.end(), cells.begin(), cells.end());
-        if(use_quality_cache) {   // (the polish: as in optimise()'s sweeps)
-          moved_at[v] = next_stamp();
-          for(Index h : deps[v]) moved_at[h] = clock;
-          for(std::size_t i = 0; i < cells.size(); ++i) { quality_cache[cells[i]] = moved_q[i]; quality_at[cells[i]] = clock; }
-        }
+        if(use_quality_cache) record_move(v, cells);   // (the polish: as in optimise()'s sweeps)
       }
       total += moved;
       work.clear();
@@ -2839,7 +2844,7 @@ private:
         below.resize(m.hexahedra.size());
         for(Index c = 0; c < m.hexahedra.size(); ++c) below[c] = cell_quality(c) < opt.polish_quality;
       } else
-        for(Index c : swept_cells) below[c] = cell_quality(c) < opt.polish_quality;
+        for(Index c : swept_cells) below[c] = current_quality(c) < opt.polish_quality;   // (just cached)
       chosen = below;
     }, opt.polish_passes);
     use_polish = false;
@@ -3428,9 +3433,8 @@ private:
   std::vector<double> q_old;
   std::vector<std::size_t> trial_order;   // improve(): its cells' positions, worst first
   std::vector<double> trial_q;            // and their qualities at a trial point
-  std::vector<double> best_q;             // ... at the best trial point
   // after improve() or relax() moved a vertex: its cells' qualities at the new place (as
-  // `cell_quality()` gives them), for the cache of `current_quality()`
+  // `cell_quality()` gives them; improve(): at its best trial point), for `record_move()`
   std::vector<double> moved_q;
   // repair_sweeps(): the cells the moves of its last sweep touched (for its `select`)
   std::vector<Index> swept_cells;
