@@ -112,7 +112,7 @@ def main():
     print(head + "; distances in surface sizes")
     print(f"{'file':20s} {'cells':>6s} {'minSJ':>6s} {'<.3':>4s} {'nonO':>5s} {'f>.25':>5s} {'f>.5':>4s} {'f>1':>4s} "
           f"{'fmax':>5s} {'i2m':>5s} {'F i2m':>6s} {'F m2i':>6s} {'T i2m':>5s} {'T m2i':>5s} {'corn':>5s} {'miss':>4s} {'rem':>4s} {'unr':>4s} "
-          f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'sec':>5s}  {'h/k/c/f/b':s}")
+          f"{'conc':>4s} {'ftet':>4s} {'capt':>4s} {'gap':>6s} {'sec':>5s}  {'h/k/c/f/b':s}")
     goals = near = 0
     cause_total = {}
     for stem, j, err in results:
@@ -130,7 +130,8 @@ def main():
               f"{rel(ft.get('input_to_mesh')):5.2f} {rel(ft.get('mesh_to_input')):5.2f} "
               f"{rel(ff['max_corner_distance']):5.2f} {b.get('curves_missed', -1):4d} {b.get('removed_buffer_cells', -1):4d} "
               f"{b.get('unreached_vertices', -1):4d} {q.get('concave_cells', -1):4d} {q.get('face_tet_errors', -1):4d} "
-              f"{b.get('capture_tries', 0):4d} {j['seconds']['total']:5.2f}  "
+              f"{b.get('capture_tries', 0):4d} {b.get('staircase_tries', 1):1d}/{b.get('staircase_gap', 0.4):<4g} "
+              f"{j['seconds']['total']:5.2f}  "
               + "/".join(str(fi.get("far_face_causes", {}).get(k, "-")) for k in ("hanging_corner", "cap_corner", "corner", "folded", "bent")))
         goals += q["scaled_jacobian"]["min"] >= 0.3 and q.get("concave_cells") == 0 and q.get("face_tet_errors") == 0
         near += fi["faces_beyond_quarter_surface_size"] == 0

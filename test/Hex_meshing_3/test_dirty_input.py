@@ -155,19 +155,26 @@ GEOMETRY_OK = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", 
 NO_FACE_BEYOND_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cylinder", "cube_nonmanifold", "eight", "fandisk",
                                "fandisk_crack", "fin_slot", "rotor", "t20_part"}
 NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight",
-                                    "fin_slot", "t20_part"}
+                                    "fandisk", "fandisk_crack", "fin_slot", "t20_part"}
 # the issue's fidelity goal, every boundary face within 0.25 x surface size of the input (cylinder
 # and eight since the fidelity polish slides the corners of faces standing off the surface: their
 # farthest went from 0.28 and 0.30 to 0.20 and 0.21; it makes moves on both)
-NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight", "fin_slot",
-                                       "t20_part"}
+# (fandisk and fandisk_crack, 6 and 4 far faces at the staircase's gap of 0.4 cell sizes, since the
+# mesh is made again with the staircase 0.25 and 0.2 cell sizes off the surface where faces are
+# far: their meshes at 0.25 and 0.2 have none)
+NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight",
+                                       "fandisk", "fandisk_crack", "fin_slot", "t20_part"}
 FIDELITY_MOVES = {"cylinder", "eight"}
 # where that goal is not met yet: at most this many faces beyond it (regression guards a little
 # above the figures of 2026-12-04 at fb28a15: bunny 16, elephant 46, elephant-with-holes 38,
 # fandisk 6 (10 before the joint moves' second target and round), fandisk_crack 4, rotor 137,
-# teapot 75; the meshes change from commit to commit in ways that move a few faces either way)
-FAR_FACES_AT_MOST = {"bunny": 20, "elephant": 52, "elephant-with-holes": 44, "fandisk": 8, "fandisk_crack": 6,
-                     "rotor": 150, "teapot": 85}
+# teapot 75; the meshes change from commit to commit in ways that move a few faces either way;
+# since the staircase retries: bunny 15, elephant 42, elephant-with-holes 38, rotor 117, teapot 75)
+FAR_FACES_AT_MOST = {"bunny": 20, "elephant": 48, "elephant-with-holes": 44, "rotor": 130, "teapot": 85}
+# the files whose first mesh (staircase 0.4 cell sizes off the surface) had a face beyond 0.25 x
+# surface size, made again with the staircase at 0.25 then 0.2 (`Meshing_statistics::
+# staircase_tries`); the others are made once
+STAIRCASE_RETRIED = {"bunny", "elephant", "elephant-with-holes", "fandisk", "fandisk_crack", "rotor", "teapot"}
 # some of the files where the polish's joint moves let curve or corner vertices off their feature
 # (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
 LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
@@ -195,15 +202,21 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # 0.334 with them (0.317 at the second without); t20_part's first leaves one, 0.354 at the second;
 # cube_nonmanifold's wedges at s / 8: 0.252 with pillows, 0.353 at the third without;
 # fandisk_crack: 0.212 with pillows, 0.325 without; since 8 smoothing sweeps instead of 12,
-# fandisk_crack and t20_part are captured once (0.350 and 0.360) and teapot twice (0.350))
-CAPTURE_RETRIED = {"bunny", "cube_nonmanifold", "teapot"}
+# fandisk_crack and t20_part are captured once (0.350 and 0.360) and teapot twice (0.350));
+# these are the captures of the mesh kept: since the staircase retries, bunny's is the mesh with
+# the staircase 0.2 cell sizes off the surface, captured once; elephant's (0.25), fandisk's (0.25)
+# and fandisk_crack's (0.2) leave cells below 0.3 at their first capture
+CAPTURE_RETRIED = {"cube_nonmanifold", "elephant", "fandisk", "fandisk_crack", "teapot"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
 # than 30 degrees counts as mesh feature edges; cube 0 / 0; with 8 smoothing sweeps anchor 0.33 /
 # 0.69, t20_part 0.70 / 0.74)
+# (fandisk 1.00 -> 1.92 input->mesh since its mesh is the one with the staircase 0.25 cell sizes
+# off the surface, no face beyond s/4 instead of 6: an input edge of 30 degrees or more whose mesh
+# edge turns by 20 to 30 degrees, 0.50 within the tolerance)
 FEATURE_FIDELITY_FLOOR = {"anchor": (0.4, 0.75), "anchor_dupflip": (0.4, 0.75), "t20_part": (0.75, 0.8),
-                          "fandisk": (1.1, 8.6), "cube": (0.05, 0.05)}
+                          "fandisk": (2.0, 8.6), "cube": (0.05, 0.05)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases)
@@ -828,6 +841,11 @@ def main():
         retried = stem in CAPTURE_RETRIED
         check(b_["capture_choice"] < b_["capture_tries"] and (b_["capture_tries"] > 1) == retried,
               f"{stem}: {b_['capture_tries']} capture(s) run (more than one: {retried}), setting {b_['capture_choice']} kept")
+        s_retried = stem in STAIRCASE_RETRIED
+        check((b_["staircase_tries"] > 1) == s_retried and b_["staircase_tries"] <= 3 and
+              b_["staircase_gap"] in (0.4, 0.25, 0.2) and (s_retried or b_["staircase_gap"] == 0.4),
+              f"{stem}: {b_['staircase_tries']} mesh(es) made (more than one: {s_retried}), the one with the staircase "
+              f"{b_['staircase_gap']} cell sizes off the surface kept")
         def once_run(tag, opts):   # one capture, the default weights (no retries)
             rep0 = os.path.join(W, "bf_" + stem + "_" + tag + ".json")
             case0 = os.path.join(W, "bf_" + stem + "_" + tag)
@@ -843,7 +861,8 @@ def main():
             # a cell below 0.3 starts the retries: without them, one capture, no better
             j0, _ = once_run("once", ["--capture-retry-cells", "0"] + BODY_FITTED_SIZES.get(stem, []))
             sj0 = j0["quality"]["scaled_jacobian"]["min"]
-            once = j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0
+            once = j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0 and \
+                j0["boundary"]["staircase_tries"] == 1
             check(once and sj0 < 0.3 <= sj,
                   f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f} "
                   f"(< 0.3; {sj:.3f} with the retries)")

@@ -265,7 +265,9 @@ int main(int argc, char** argv)
   app.add_option("--capture-retry-cells", capture_retry_cells, "where the boundary capture leaves a cell below a scaled "
                  "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 4 times: without the feature pillows, then with other weights of the feature paths) on meshes of at "
                  "most this many cells, and the mesh with the fewest checkMesh -allGeometry faults, then cells below 0.3 is "
-                 "kept; 0: never (default 200000)");
+                 "kept; where the mesh kept has a boundary face beyond 1/4 of the surface size from the input, such a cell or "
+                 "fault, the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead of "
+                 "0.4, and the best is kept (faults, cells below 0.3, far faces); 0: never (default 200000)");
   app.add_option("--smoothing-sweeps", smoothing_sweeps, "the boundary capture's main optimisation sweeps at most: more "
                  "raise the worst cells a little, at a cost in time (default 8)")->check(CLI::Range(1, 1000));
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
@@ -857,7 +859,7 @@ int main(int argc, char** argv)
           };
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
                            {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces}, {"non_orthogonal_faces", stats.non_orthogonal_faces}, {"foam_fault_cells", stats.foam_fault_cells},
-                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
+                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"staircase_tries", stats.staircase_tries}, {"staircase_gap", stats.staircase_gap}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
