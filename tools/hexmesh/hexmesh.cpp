@@ -265,8 +265,8 @@ int main(int argc, char** argv)
   app.add_option("--capture-retry-cells", capture_retry_cells, "where the boundary capture leaves a cell below a scaled "
                  "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 4 times: without the feature pillows, then with other weights of the feature paths) on meshes of at "
                  "most this many cells, and the mesh with the fewest checkMesh -allGeometry faults, then cells below 0.3 is "
-                 "kept; where the mesh kept has a boundary face beyond 1/4 of the surface size from the input, such a cell or "
-                 "fault, the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead of "
+                 "kept; where the mesh kept has a boundary face beyond 1/4 of the surface size from the input or such a cell, "
+                 "the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead of "
                  "0.4, and the best is kept (faults, cells below 0.3, far faces); 0: never (default 200000)");
   app.add_option("--smoothing-sweeps", smoothing_sweeps, "the boundary capture's main optimisation sweeps at most: more "
                  "raise the worst cells a little, at a cost in time (default 8)")->check(CLI::Range(1, 1000));
