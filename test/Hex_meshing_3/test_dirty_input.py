@@ -846,6 +846,13 @@ def main():
               b_["staircase_gap"] in (0.4, 0.25, 0.2) and (s_retried or b_["staircase_gap"] == 0.4),
               f"{stem}: {b_['staircase_tries']} mesh(es) made (more than one: {s_retried}), the one with the staircase "
               f"{b_['staircase_gap']} cell sizes off the surface kept")
+        # the report's seconds per phase: a phase run once per mesh made is summed, so the phases
+        # together take no longer than the whole run, and most of it (0.92 to 0.99 of it on the 15
+        # files; where the last mesh's phases overwrote the others', bunny's came to 0.25 of it)
+        sec_ = j["seconds"]
+        parts_ = sum(v for k, v in sec_.items() if k != "total")
+        check(0.8 * sec_["total"] <= parts_ <= sec_["total"] * 1.001 + 0.01,
+              f"{stem}: the phases' seconds sum to {parts_:.2f} s, 0.8 to 1 times the total {sec_['total']:.2f} s")
         def once_run(tag, opts):   # one capture, the default weights (no retries)
             rep0 = os.path.join(W, "bf_" + stem + "_" + tag + ".json")
             case0 = os.path.join(W, "bf_" + stem + "_" + tag)

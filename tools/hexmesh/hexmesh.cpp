@@ -85,8 +85,15 @@ struct Progress
 
   void on_phase_begin(const char* name, std::size_t cells)
   {
+    // a second "refine": the mesh is made again with the staircase closer to the surface (the
+    // staircase retries of `capture_retry_cells`)
+    const bool again = std::string(name) == "refine" &&
+                       std::any_of(work.begin(), work.end(), [](const auto& w) { return w.first == "refine"; });
     phase = name; phase_t0 = std::chrono::steady_clock::now(); last_percent = -1;
     work.push_back({name, cells});
+    if(!quiet && again)
+      std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: a boundary face stands beyond 1/4 surface size off the input "
+                   "or a cell is below 0.3: the mesh is made again with the staircase closer to the surface\n";
     if(!quiet) {
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: " << name << " (" << cells << " cells)";
       std::cerr << (tty ? "" : "\n") << std::flush;
@@ -510,7 +517,11 @@ int main(int argc, char** argv)
                 << stats.curve_vertices << " on " << stats.curves_captured << " feature curves, " << stats.corner_vertices
                 << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curve_gaps << " curve ends short of their corner, " << stats.curve_turns.size() << " chain turns left off their curve, " << stats.curves_missed
                 << " curves missed, " << stats.unreached_vertices.size() << " vertices could not reach the surface, "
-                << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)\n";
+                << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)"
+                << (stats.staircase_tries > 1 ? "; the mesh made " + std::to_string(stats.staircase_tries) +
+                                                    " times, the one with the staircase " + std::to_string(stats.staircase_gap).substr(0, 4) +
+                                                    " cell sizes off the surface kept" : std::string())
+                << "\n";
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
       std::cerr << "hexmesh: " << stats.trimmed_cells << " cells trimmed (fingers and plates one cell thick)"
                 << (stats.disconnected_cells ? ", " + std::to_string(stats.disconnected_cells) +
@@ -834,20 +845,22 @@ int main(int argc, char** argv)
       sec["read"] = t_read;
       sec["repair"] = t_repair;
       sec["features"] = t_features;
-      for(const auto& s : progress.seconds) sec[s.first] = s.second;
+      // (a phase run several times, by the staircase retries: the sum)
+      for(const auto& s : progress.seconds) sec[s.first] = (sec.contains(s.first) ? sec[s.first].get<double>() : 0.0) + s.second;
       sec["quality"] = t_quality; sec["write"] = t_write; sec["total"] = total;
       j["seconds"] = sec;
       j["peak_memory_mib"] = peak_memory_mib();
       {
         nlohmann::ordered_json pk = nlohmann::ordered_json::object();
-        for(const auto& pp : progress.peaks) pk[pp.first] = pp.second;
+        for(const auto& pp : progress.peaks) pk[pp.first] = (std::max)(pk.contains(pp.first) ? pk[pp.first].get<double>() : 0.0, pp.second);
         j["peak_memory_mib_by_phase"] = pk;
       }
       {
         // grid speed: leaf cells of the balanced grid per second of refine + balance + classify
-        std::size_t leaves = 0;
+        // (all of the grids the staircase retries made: each has the same leaves)
+        std::size_t leaves = 0, grids = 0;
         double grid_seconds = 0;
-        for(const auto& w : progress.work) if(w.first == "classify") leaves = w.second;
+        for(const auto& w : progress.work) if(w.first == "classify") { leaves = w.second; ++grids; }
         for(const auto& s : progress.seconds)
           if(s.first == "refine" || s.first == "balance" || s.first == "classify") grid_seconds += s.second;
         if(!staircase) {
@@ -877,7 +890,7 @@ int main(int argc, char** argv)
                      {"components", stats.components}, {"trimmed_cells", stats.trimmed_cells},
                      {"disconnected_cells", stats.disconnected_cells}, {"max_level", stats.max_level_reached},
                      {"seconds", grid_seconds},
-                     {"leaf_cells_per_second", grid_seconds > 0 ? double(leaves) / grid_seconds : 0.0}};
+                     {"leaf_cells_per_second", grid_seconds > 0 ? double(leaves * grids) / grid_seconds : 0.0}};
       }
       j["quality"] = std::move(jquality);
       j["outputs"] = outputs;
