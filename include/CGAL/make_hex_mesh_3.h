@@ -458,10 +458,10 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
                                        [&](const auto& d) { return d.first > far_bound; }));
     };
-    // faults, cells below 0.3, far faces (`far`, or counted), minimum scaled Jacobian (negated)
+    // faults, cells below 0.3, far faces (`far`), minimum scaled Jacobian (negated)
     auto score = [&](const HexMesh& mesh, std::size_t far) {
       const auto f = faults(mesh);
-      return std::make_tuple(std::get<0>(f), std::get<1>(f), far == std::size_t(-1) ? far_faces(mesh) : far, std::get<2>(f));
+      return std::make_tuple(std::get<0>(f), std::get<1>(f), far, std::get<2>(f));
     };
     // (the cheap counts first: a mesh with no cell below 0.3 and no far face is kept without
     // counting its OpenFOAM faults, which its capture removed: anchor at its test size 5.25 ->
@@ -470,7 +470,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     const bool clean = far0 == 0 && low_cells(out).first == 0;
     auto best = clean ? std::make_tuple(std::size_t(0), std::size_t(0), std::size_t(0), 0.0) : score(out, far0);
     std::size_t tries = 1, choice = 0;
-    for(std::size_t k = 1; k < std::size(gaps) && !clean && std::get<1>(best) <= max_low_cells &&
+    for(std::size_t k = 1; k < std::size(gaps) && std::get<1>(best) <= max_low_cells &&
                            (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<2>(best) > 0); ++k) {
       HexMesh trial;
       Hex_meshing_3::Meshing_statistics st;
@@ -480,7 +480,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       ++tries;
       if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
       if(trial.number_of_cells() == 0) continue;
-      const auto sc = score(trial, std::size_t(-1));
+      const auto sc = score(trial, far_faces(trial));
       if(sc < best) { best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k; }
     }
     stats.staircase_tries = tries;

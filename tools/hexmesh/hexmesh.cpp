@@ -511,17 +511,18 @@ int main(int argc, char** argv)
                                                                .feature_pillows(feature_pillows)
                                                                .capture_retry_cells(capture_retry_cells).smoothing_sweeps(smoothing_sweeps)
                                                                .visitor(std::ref(progress)));
-    if(!quiet && !staircase)
+    if(!quiet && !staircase) {
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
                 << stats.buffer_cells << " buffer cells (" << stats.pillow_cells << " in feature pillows), " << stats.surface_vertices << " vertices on the surface ("
                 << stats.curve_vertices << " on " << stats.curves_captured << " feature curves, " << stats.corner_vertices
                 << " on corners, " << stats.cap_vertices << " capping holes), " << stats.curve_gaps << " curve ends short of their corner, " << stats.curve_turns.size() << " chain turns left off their curve, " << stats.curves_missed
                 << " curves missed, " << stats.unreached_vertices.size() << " vertices could not reach the surface, "
-                << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)"
-                << (stats.staircase_tries > 1 ? "; the mesh made " + std::to_string(stats.staircase_tries) +
-                                                    " times, the one with the staircase " + std::to_string(stats.staircase_gap).substr(0, 4) +
-                                                    " cell sizes off the surface kept" : std::string())
-                << "\n";
+                << stats.removed_buffer_cells << " buffer cells could not be made valid (removed)";
+      if(stats.staircase_tries > 1)
+        std::cerr << "; the mesh made " << stats.staircase_tries << " times, the one with the staircase " << stats.staircase_gap
+                  << " cell sizes off the surface kept";
+      std::cerr << "\n";
+    }
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
       std::cerr << "hexmesh: " << stats.trimmed_cells << " cells trimmed (fingers and plates one cell thick)"
                 << (stats.disconnected_cells ? ", " + std::to_string(stats.disconnected_cells) +

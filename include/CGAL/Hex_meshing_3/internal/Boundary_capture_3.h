@@ -2750,7 +2750,6 @@ private:
     std::vector<Index> cells, work;
     std::vector<char> in_work(P.size(), 0), chosen(m.hexahedra.size(), 0);
     std::size_t total = 0;
-    swept_cells.clear();
     for(int pass = 0; pass < passes; ++pass) {
       std::fill(chosen.begin(), chosen.end(), 0);
       select(chosen);
