@@ -136,10 +136,19 @@ T20 = THIN + ["--feature-size", "0.7"]
 # narrower than 4 cells: the mesh then stops where the wedge is narrow enough for its cap to lie
 # within s/4 of both sides (73 faces beyond s/4 with --thin-cells 5, caps at 0.41 s)
 WEDGE = ["--thin-cells", "4", "--thin-size", "0.0125"]
-BODY_FITTED_SIZES = {"anchor": ANCHOR, "anchor_dupflip": ANCHOR, "cube_nonmanifold": WEDGE, "eight": THIN, "fandisk": THIN,
-                     "fandisk_crack": THIN, "t20_part": T20}
+# the organic models' parts thinner than two surface cells (bunny's ears, 1.2 to 1.8 s thick; the
+# elephant's trunk, tail, tusks and ears, about 1 s) get 6 cells across, down to s/8: every boundary
+# face within s/4 of the input and the whole input within s/2 of the mesh (at s: faces up to 1.04 s
+# off where a part was lost or half kept, parts of the input 9 to 13 s from the mesh; with 6 cells
+# down to s/4 the ears' rims still fold faces, 1 to 4 of them); their feature angle is 60 degrees:
+# their coarse triangulations crease by 30 to 60 degrees where the shape is smooth (bunny at 30
+# degrees: 103 feature curves, faces folded along them at its ears' rims)
+BUNNY = ["--thin-cells", "6", "--thin-size", "0.031", "--feature-angle", "60"]
+ELEPHANT = ["--thin-cells", "6", "--thin-size", "0.003125", "--feature-angle", "60"]
+BODY_FITTED_SIZES = {"anchor": ANCHOR, "anchor_dupflip": ANCHOR, "bunny": BUNNY, "cube_nonmanifold": WEDGE,
+                     "elephant": ELEPHANT, "eight": THIN, "fandisk": THIN, "fandisk_crack": THIN, "t20_part": T20}
 # clean closed inputs whose boundary keeps the input's topology at those sizes (the others have
-# parts thinner than two surface cells: rotor's blades, the elephant's trunk and tail)
+# parts thinner than two surface cells: rotor's blades and rim, fin_slot's slot and fin)
 # body-fitted meshes that checkMesh -allGeometry finds no concave cell in (all, since the rims of
 # elephant-with-holes' holes in its smooth skin are no features: it had 2, at its capped holes)
 NO_CONCAVE_CELLS = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
@@ -152,29 +161,39 @@ NO_CONCAVE_CELLS = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifo
 GEOMETRY_OK = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
                "elephant-with-holes", "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part", "teapot"}
 # (anchor's farthest was 1.9 while non-manifold staircase vertices removed every cell around them)
-NO_FACE_BEYOND_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cylinder", "cube_nonmanifold", "eight", "fandisk",
-                               "fandisk_crack", "fin_slot", "rotor", "t20_part"}
-NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight",
-                                    "fandisk", "fandisk_crack", "fin_slot", "t20_part"}
+NO_FACE_BEYOND_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cube", "cylinder", "cube_nonmanifold", "eight",
+                               "elephant", "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part"}
+NO_FACE_BEYOND_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight",
+                                    "elephant", "fandisk", "fandisk_crack", "fin_slot", "t20_part"}
 # the issue's fidelity goal, every boundary face within 0.25 x surface size of the input (cylinder
 # and eight since the fidelity polish slides the corners of faces standing off the surface: their
 # farthest went from 0.28 and 0.30 to 0.20 and 0.21; it makes moves on both)
 # (fandisk and fandisk_crack, 6 and 4 far faces at the staircase's gap of 0.4 cell sizes, since the
 # mesh is made again with the staircase 0.25 and 0.2 cell sizes off the surface where faces are
 # far: their meshes at 0.25 and 0.2 have none)
-NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "cube", "cube_nonmanifold", "cylinder", "eight",
-                                       "fandisk", "fandisk_crack", "fin_slot", "t20_part"}
+# (bunny and elephant since their thin parts get 6 cells across: 15 and 42 far faces at s)
+NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder",
+                                       "eight", "elephant", "fandisk", "fandisk_crack", "fin_slot", "t20_part"}
+# the issue's second fidelity figure, 10,000 points sampled on the input within 0.5 x surface size
+# of the mesh boundary: the clean closed inputs whose thin parts are resolved at those sizes, and
+# two dirty ones that reach it too (not fin_slot, rotor: their slot, fin, blades and rim are
+# thinner than two surface cells and not resolved; not teapot nor elephant-with-holes: open, their
+# holes capped; at s, bunny's lost ear tips were 13 s from its mesh)
+INPUT_WITHIN_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight",
+                                  "elephant", "fandisk", "fandisk_crack", "t20_part"}
 FIDELITY_MOVES = {"cylinder", "eight"}
 # where that goal is not met yet: at most this many faces beyond it (regression guards a little
 # above the figures of 2026-12-04 at fb28a15: bunny 16, elephant 46, elephant-with-holes 38,
 # fandisk 6 (10 before the joint moves' second target and round), fandisk_crack 4, rotor 137,
 # teapot 75; the meshes change from commit to commit in ways that move a few faces either way;
-# since the staircase retries: bunny 15, elephant 42, elephant-with-holes 38, rotor 117, teapot 75)
-FAR_FACES_AT_MOST = {"bunny": 20, "elephant": 48, "elephant-with-holes": 44, "rotor": 130, "teapot": 85}
+# since the staircase retries: bunny 15, elephant 42, elephant-with-holes 38, rotor 117, teapot 75;
+# bunny and elephant none since their thin parts get 6 cells across)
+FAR_FACES_AT_MOST = {"elephant-with-holes": 44, "rotor": 130, "teapot": 85}
 # the files whose first mesh (staircase 0.4 cell sizes off the surface) had a face beyond 0.25 x
 # surface size, made again with the staircase at 0.25 then 0.2 (`Meshing_statistics::
 # staircase_tries`); the others are made once
-STAIRCASE_RETRIED = {"bunny", "elephant", "elephant-with-holes", "fandisk", "fandisk_crack", "rotor", "teapot"}
+# (elephant's mesh with its thin parts at s/8 is made once)
+STAIRCASE_RETRIED = {"bunny", "elephant-with-holes", "fandisk", "fandisk_crack", "rotor", "teapot"}
 # some of the files where the polish's joint moves let curve or corner vertices off their feature
 # (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
 LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
@@ -235,7 +254,7 @@ MIN_SJ_FLOOR = {}
 # had one, 73 degrees, at a capped hole)
 NON_ORTHO_65 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight", "elephant",
                 "elephant-with-holes", "fandisk", "fandisk_crack", "fin_slot", "rotor", "t20_part", "teapot"}
-SAME_TOPOLOGY = {"anchor", "cube", "eight", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
+SAME_TOPOLOGY = {"anchor", "cube", "eight", "elephant", "fandisk", "t20_part", "bunny", "cylinder", "fin_slot"}
 
 
 # ---- OpenFOAM polyMesh, read back independently -----------------------------------------------
@@ -865,14 +884,16 @@ def main():
             return rg.returncode == 0 and "Mesh OK" in rg.stdout and not flags, flags
 
         if stem == "bunny":
-            # a cell below 0.3 starts the retries: without them, one capture, no better
-            j0, _ = once_run("once", ["--capture-retry-cells", "0"] + BODY_FITTED_SIZES.get(stem, []))
-            sj0 = j0["quality"]["scaled_jacobian"]["min"]
+            # at the default sizes (its ears lost or half kept), a cell below 0.3 starts the
+            # retries: without them, one capture, no better
+            jd, _ = once_run("default", [])
+            j0, _ = once_run("once", ["--capture-retry-cells", "0"])
+            sj0, sjd = j0["quality"]["scaled_jacobian"]["min"], jd["quality"]["scaled_jacobian"]["min"]
             once = j0["boundary"]["capture_tries"] == 1 and j0["boundary"]["capture_choice"] == 0 and \
                 j0["boundary"]["staircase_tries"] == 1
-            check(once and sj0 < 0.3 <= sj,
+            check(once and sj0 < 0.3 <= sjd and jd["boundary"]["staircase_tries"] > 1,
                   f"{stem}: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), minimum {sj0:.3f} "
-                  f"(< 0.3; {sj:.3f} with the retries)")
+                  f"(< 0.3; {sjd:.3f} with the retries, {jd['boundary']['staircase_tries']} meshes made)")
             # with 5 cells across its thin parts (its ears) none of the four captures is free of
             # cells concave for OpenFOAM or at faces failing the tet decomposition: the one kept
             # runs a fifth time, with the removal
@@ -1061,6 +1082,10 @@ def main():
               len(b["removed_buffer_cells_first_100"]) == min(100, b["removed_buffer_cells"]),
               f"{stem}: the report locates the {b['curves_missed']} missed curves, the {b['curve_turns']} chain turns and "
               f"the {b['removed_buffer_cells']} removed buffer cells")
+        if stem in INPUT_WITHIN_HALF_SURFACE_SIZE:
+            check(fi["samples"] == 10000 and fi["input_to_mesh_max"] <= 0.5 * s_,
+                  f"{stem}: the {fi['samples']} points sampled on the input within 0.5 x surface size of the mesh boundary "
+                  f"(farthest {fi['input_to_mesh_max'] / s_:.2f} x)")
         if stem in SAME_TOPOLOGY:
             same = (topo["input"]["components"] == topo["mesh_boundary"]["components"] and
                     topo["input"]["euler_characteristic"] == topo["mesh_boundary"]["euler_characteristic"])
