@@ -78,6 +78,9 @@ BODY_FITTED_TOLERATED = ("***Concave cells (using face planes)", "***Error in fa
                          "***Cells with small determinant")
 
 
+WARNED = []   # per case meshed by mesh_case(): whether hexmesh warned of parts of the input far from the mesh
+
+
 def mesh_case(args, name, extra, label):
     print(f"[{label}] hexmesh {name} {' '.join(extra)}")
     work = os.path.join(args.work, label)
@@ -91,6 +94,15 @@ def mesh_case(args, name, extra, label):
     if r.returncode != 0:
         return None
     rep = json.load(open(report))
+    # the warning on parts of the input far from the mesh (said even with -q): exactly when the
+    # report's input -> mesh distance exceeds the surface size, on a body-fitted mesh
+    fi = rep.get("fidelity")
+    if fi:
+        warned = "warning: parts of the input are up to" in r.stderr
+        WARNED.append(warned)
+        check(warned == ("--staircase" not in extra and fi["input_to_mesh_max"] > fi["surface_size"]),
+              f"warned of parts of the input far from the mesh: {warned} (input -> mesh "
+              f"{fi['input_to_mesh_max'] / fi['surface_size']:.2f} surface sizes)")
     rc, out = checkmesh(case)
     check(rc == 0, "checkMesh runs")
     # topology: all OK
@@ -382,6 +394,26 @@ def main():
         r = run([args.hexmesh, box_obj, "-o", os.path.join(args.work, "bad_patch.vtu"), "-q"] + stair + bad)
         check(r.returncode == 2 and what in r.stderr and not os.path.exists(os.path.join(args.work, "bad_patch.vtu")),
               f"{' '.join(bad)}: exit 2, '{what}', nothing written (got {r.returncode}: {r.stderr.strip()[:120]})")
+
+    # (bunny at the default sizes loses its ear tips, 13 surface sizes from the mesh; cube loses nothing)
+    check(any(WARNED) and not all(WARNED), f"the far-input warning given on some cases, not all ({sum(WARNED)} of {len(WARNED)})")
+    # the summary's fidelity line, without -q: the report's counts
+    print("[fidelity summary]")
+    d = os.path.join(args.work, "fidelity_summary")
+    os.makedirs(d)
+    r = run([args.hexmesh, os.path.join(args.data, "bunny.off"), "-o", os.path.join(d, "m.vtu"), "--report",
+             os.path.join(d, "r.json")])
+    m = re.search(r"^fidelity\s+(\d+) boundary faces on the input \((\d+) more capping holes\), (\d+) beyond 1/4 surface size "
+                  r"\(the farthest (\S+) surface sizes off.*; (\d+) points of the input within (\S+) surface sizes", r.stdout, re.M)
+    check(r.returncode == 0 and m is not None, f"the summary has a fidelity line ({r.stdout[-400:]!r})")
+    if m:
+        fi = json.load(open(os.path.join(d, "r.json")))["fidelity"]
+        s_ = fi["surface_size"]
+        check(int(m.group(1)) == fi["surface_faces"] and int(m.group(2)) == fi["cap_faces"] and
+              int(m.group(3)) == fi["faces_beyond_quarter_surface_size"] and int(m.group(5)) == fi["samples"] and
+              abs(float(m.group(4)) - fi["mesh_to_input_max"] / s_) <= 0.01 * fi["mesh_to_input_max"] / s_ and
+              abs(float(m.group(6)) - fi["input_to_mesh_max"] / s_) <= 0.01 * fi["input_to_mesh_max"] / s_,
+              f"the fidelity line agrees with the report: {m.group(0)}")
 
     # determinism: byte-identical outputs
     print("[determinism]")

@@ -693,6 +693,10 @@ int main(int argc, char** argv)
       std::printf("status %s  seconds %.3f  peak memory %.1f MiB\n", HM::status_name(status), total, peak_memory_mib());
       for(const std::string& o : outputs) std::printf("wrote %s\n", o.c_str());
     }
+    // the boundary's fidelity (both ways; the report gives the details): measured on every run,
+    // so that a part of the input lost or capped is said even without a report
+    HM::Boundary_fidelity fid;
+    bool have_fid = false;
     if(!reports.empty()) {
       nlohmann::ordered_json j;
       j["inputs"] = inputs;
@@ -751,7 +755,8 @@ int main(int argc, char** argv)
       pm = HM::Polyhedral_mesh_3();
       {
         const auto tf = std::chrono::steady_clock::now();
-        const HM::Boundary_fidelity fid = HM::boundary_fidelity(mesh, domain, 10000);
+        fid = HM::boundary_fidelity(mesh, domain, 10000);
+        have_fid = true;
         auto loc = [](const std::array<double, 3>& p) { return nlohmann::ordered_json{p[0], p[1], p[2]}; };
         j["fidelity"] = {{"surface_faces", fid.surface_faces}, {"cap_faces", fid.cap_faces}, {"cap_area", fid.cap_area}, {"mesh_to_input_max", fid.max_face_distance},
                          {"mesh_to_input_mean", fid.mean_face_distance}, {"mesh_to_input_worst_at", loc(fid.worst_face_location)},
@@ -901,6 +906,31 @@ int main(int argc, char** argv)
         else os << j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";   // names from files may not be UTF-8
         if(!os) { std::cerr << "hexmesh: cannot write " << r << "\n"; return OUTPUT; }
       }
+    }
+    if(!have_fid) {
+      pm = HM::Polyhedral_mesh_3();   // (freed first: the fidelity builds its own trees)
+      fid = HM::boundary_fidelity(mesh, domain, 10000);
+    }
+    if(fid.surface_faces > 0) {
+      std::size_t far = 0;
+      for(const auto& fd : fid.face_distances) if(fd.first > 0.25 * surface_size) ++far;
+      auto at = [](const std::array<double, 3>& p) {
+        return "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")";
+      };
+      if(!quiet)
+        std::printf("fidelity           %zu boundary faces on the input (%zu more capping holes), %zu beyond 1/4 surface size "
+                    "(the farthest %.3g surface sizes off, at %s); %zu points of the input within %.3g surface sizes of "
+                    "the mesh (the farthest at %s)\n",
+                    fid.surface_faces, fid.cap_faces, far, fid.max_face_distance / surface_size, at(fid.worst_face_location).c_str(),
+                    fid.samples, fid.max_sample_distance / surface_size, at(fid.worst_sample_location).c_str());
+      // a part of the input the body-fitted mesh does not cover: said even with --quiet (a staircase
+      // stands up to a cell's half diagonal off by design)
+      if(!staircase && fid.samples > 0 && fid.max_sample_distance > surface_size)
+        std::cerr << "hexmesh: warning: parts of the input are up to " << fid.max_sample_distance / surface_size
+                  << " surface sizes from the mesh (the farthest at " << at(fid.worst_sample_location)
+                  << "): a part thinner than about two surface cells is lost or only partly meshed there (--thin-cells 6 "
+                     "--thin-size with about 1/8 of the surface size meshes it), or a gap is closed, a hole capped, or the "
+                     "input lies outside the meshed region\n";
     }
     return status == HM::Status::CANCELED ? CANCELLED : OK;
   } catch(const HM::Input_error& e) {
