@@ -414,6 +414,18 @@ def main():
               abs(float(m.group(4)) - fi["mesh_to_input_max"] / s_) <= 0.01 * fi["mesh_to_input_max"] / s_ and
               abs(float(m.group(6)) - fi["input_to_mesh_max"] / s_) <= 0.01 * fi["input_to_mesh_max"] / s_,
               f"the fidelity line agrees with the report: {m.group(0)}")
+    # the warning's suggestion, followed, meshes bunny's ears: no warning, the input within the
+    # surface size of the mesh (0.25 s at 6 cells down to s/8; 13.3 s at the default sizes)
+    w = re.search(r"warning: parts of the input are up to \S+ surface sizes .*--thin-cells 6 --thin-size (\S+) meshes it", r.stderr)
+    check(w is not None, f"bunny at the default sizes: the warning suggests a --thin-size ({r.stderr.strip()[-300:]!r})")
+    if w:
+        r2 = run([args.hexmesh, os.path.join(args.data, "bunny.off"), "-o", os.path.join(d, "m2.vtu"), "--report",
+                  os.path.join(d, "r2.json"), "-q", "--thin-cells", "6", "--thin-size", w.group(1)])
+        fi2 = json.load(open(os.path.join(d, "r2.json")))["fidelity"] if r2.returncode == 0 else None
+        check(fi2 is not None and "warning: parts of the input" not in r2.stderr and
+              fi2["input_to_mesh_max"] <= fi2["surface_size"],
+              f"bunny with --thin-cells 6 --thin-size {w.group(1)}: no warning, the input within "
+              f"{fi2['input_to_mesh_max'] / fi2['surface_size'] if fi2 else float('nan'):.2f} surface sizes of the mesh")
 
     # determinism: byte-identical outputs
     print("[determinism]")

@@ -925,12 +925,17 @@ int main(int argc, char** argv)
                     fid.samples, fid.max_sample_distance / surface_size, at(fid.worst_sample_location).c_str());
       // a part of the input the body-fitted mesh does not cover: said even with --quiet (a staircase
       // stands up to a cell's half diagonal off by design)
-      if(!staircase && fid.samples > 0 && fid.max_sample_distance > surface_size)
+      if(!staircase && fid.samples > 0 && fid.max_sample_distance > surface_size) {
+        // the suggested --thin-size: s/8 rounded up to 3 digits (cells are split while larger
+        // than it: s/8 is the last level, whatever the rounding)
+        const double mag = std::pow(10.0, std::floor(std::log10(surface_size / 8)) - 2);
+        const double thin = std::ceil(surface_size / 8 / mag) * mag;
         std::cerr << "hexmesh: warning: parts of the input are up to " << fid.max_sample_distance / surface_size
                   << " surface sizes from the mesh (the farthest at " << at(fid.worst_sample_location)
                   << "): a part thinner than about two surface cells is lost or only partly meshed there (--thin-cells 6 "
-                     "--thin-size with about 1/8 of the surface size meshes it), or a gap is closed, a hole capped, or the "
-                     "input lies outside the meshed region\n";
+                     "--thin-size " << thin << " meshes it: 6 cells across, down to 1/8 of the surface size), "
+                     "or a gap is closed, a hole capped, or the input lies outside the meshed region\n";
+      }
     }
     return status == HM::Status::CANCELED ? CANCELLED : OK;
   } catch(const HM::Input_error& e) {
