@@ -697,6 +697,11 @@ int main(int argc, char** argv)
     // so that a part of the input lost or capped is said even without a report
     HM::Boundary_fidelity fid;
     bool have_fid = false;
+    // its faces farther than r surface sizes from the input
+    auto faces_beyond = [&](double r) {
+      return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
+                                       [&](const auto& fd) { return fd.first > r * surface_size; }));
+    };
     if(!reports.empty()) {
       nlohmann::ordered_json j;
       j["inputs"] = inputs;
@@ -763,13 +768,6 @@ int main(int argc, char** argv)
                          {"samples", fid.samples}, {"input_to_mesh_max", fid.max_sample_distance},
                          {"input_to_mesh_mean", fid.mean_sample_distance}, {"input_to_mesh_worst_at", loc(fid.worst_sample_location)},
                          {"surface_size", surface_size}};
-        // faces farther than 1/4, 1/2 and 1 surface size (the bound is 1/4), and the
-        // farthest of them
-        std::size_t beyond[3] = {0, 0, 0};
-        for(const auto& fd : fid.face_distances) {
-          const double r = fd.first / surface_size;
-          for(int k = 0; k < 3; ++k) if(r > (k == 0 ? 0.25 : k == 1 ? 0.5 : 1.0)) ++beyond[k];
-        }
         // the faces beyond 1/4, farthest first, each with why it stands off (`far_faces()`)
         const std::vector<HM::Far_face> far = HM::far_faces(mesh, fid, 0.25 * surface_size);
         nlohmann::ordered_json causes = {{"hanging_corner", 0}, {"cap_corner", 0}, {"corner", 0}, {"folded", 0}, {"bent", 0}};
@@ -781,9 +779,10 @@ int main(int argc, char** argv)
         for(std::size_t i = 0; i < far.size() && i < 50; ++i)
           jf.push_back({{"distance", far[i].distance}, {"at", loc(far[i].at)}, {"cause", HM::far_face_cause_name(far[i].cause)},
                         {"fold", far[i].fold}, {"size", far[i].size}});
-        j["fidelity"]["faces_beyond_quarter_surface_size"] = beyond[0];
-        j["fidelity"]["faces_beyond_half_surface_size"] = beyond[1];
-        j["fidelity"]["faces_beyond_surface_size"] = beyond[2];
+        // faces farther than 1/4, 1/2 and 1 surface size (the bound is 1/4)
+        j["fidelity"]["faces_beyond_quarter_surface_size"] = faces_beyond(0.25);
+        j["fidelity"]["faces_beyond_half_surface_size"] = faces_beyond(0.5);
+        j["fidelity"]["faces_beyond_surface_size"] = faces_beyond(1.0);
         j["fidelity"]["far_face_causes"] = causes;
         j["fidelity"]["farthest_faces"] = jf;
         // the feature curves: input sharp, open and non-manifold edges against the mesh
@@ -912,8 +911,7 @@ int main(int argc, char** argv)
       fid = HM::boundary_fidelity(mesh, domain, 10000);
     }
     if(fid.surface_faces > 0) {
-      std::size_t far = 0;
-      for(const auto& fd : fid.face_distances) if(fd.first > 0.25 * surface_size) ++far;
+      const std::size_t far = faces_beyond(0.25);
       auto at = [](const std::array<double, 3>& p) {
         return "(" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")";
       };
