@@ -426,6 +426,28 @@ def main():
               fi2["input_to_mesh_max"] <= fi2["surface_size"],
               f"bunny with --thin-cells 6 --thin-size {w.group(1)}: no warning, the input within "
               f"{fi2['input_to_mesh_max'] / fi2['surface_size'] if fi2 else float('nan'):.2f} surface sizes of the mesh")
+    # a plate too thin for the thin-part refinement already given (0.004 thick, cells of s/8 =
+    # 0.0094 at most): the warning says so and suggests no --thin-size it already has; without the
+    # refinement, it suggests one (0.00938: s/8 rounded up)
+    plate = os.path.join(d, "cube_plate.obj")
+    with open(plate, "w") as o:
+        for lo, hi in (((0, 0, 0), (1, 1, 1)), ((0.9, 0.2, 0.498), (1.5, 0.8, 0.502))):
+            for z in (lo[2], hi[2]):
+                for x, y in ((lo[0], lo[1]), (hi[0], lo[1]), (hi[0], hi[1]), (lo[0], hi[1])):
+                    o.write(f"v {x} {y} {z}\n")
+        for g, b in (("cube", 0), ("plate", 8)):
+            o.write(f"g {g}\n")
+            for q in ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)):
+                o.write("f " + " ".join(str(b + i + 1) for i in q) + "\n")
+    for extra, given in (([], False), (["--thin-cells", "6", "--thin-size", "0.009"], True)):
+        r3 = run([args.hexmesh, plate, "-o", os.path.join(d, "plate.vtu"), "--force", "-q", "--size", "0.3",
+                  "--surface-size", "0.075"] + extra)
+        said = re.search(r"warning: parts of the input are up to (\S+) surface sizes", r3.stderr)
+        check(r3.returncode == 0 and said is not None and float(said.group(1)) > 6 and
+              ("--thin-cells 6 --thin-size 0.00938 meshes it" in r3.stderr) == (not given) and
+              ("too thin for the thin-part refinement given (--thin-cells 6 --thin-size 0.009)" in r3.stderr) == given,
+              f"a 0.004 plate {'with' if given else 'without'} --thin-cells 6 --thin-size 0.009: the warning "
+              f"{'names the refinement given' if given else 'suggests --thin-size 0.00938'} ({r3.stderr.strip()[-330:]!r})")
 
     # determinism: byte-identical outputs
     print("[determinism]")

@@ -929,10 +929,16 @@ int main(int argc, char** argv)
         const double mag = std::pow(10.0, std::floor(std::log10(surface_size / 8)) - 2);
         const double thin = std::ceil(surface_size / 8 / mag) * mag;
         std::cerr << "hexmesh: warning: parts of the input are up to " << fid.max_sample_distance / surface_size
-                  << " surface sizes from the mesh (the farthest at " << at(fid.worst_sample_location)
-                  << "): a part thinner than about two surface cells is lost or only partly meshed there (--thin-cells 6 "
-                     "--thin-size " << thin << " meshes it: 6 cells across, down to 1/8 of the surface size), "
-                     "or a gap is closed, a hole capped, or the input lies outside the meshed region\n";
+                  << " surface sizes from the mesh (the farthest at " << at(fid.worst_sample_location) << "): ";
+        // (a run that refines its thin parts at least as much already is not told to: the part
+        // there is thinner than its refinement resolves)
+        if(thin_cells >= 6 && thin_size <= thin)
+          std::cerr << "a part or gap too thin for the thin-part refinement given (--thin-cells " << thin_cells
+                    << " --thin-size " << thin_size << ") is lost or only partly meshed there, ";
+        else
+          std::cerr << "a part thinner than about two surface cells is lost or only partly meshed there (--thin-cells 6 "
+                       "--thin-size " << thin << " meshes it: 6 cells across, down to 1/8 of the surface size), ";
+        std::cerr << "or a gap is closed, a hole capped, or the input lies outside the meshed region\n";
       }
     }
     return status == HM::Status::CANCELED ? CANCELLED : OK;
