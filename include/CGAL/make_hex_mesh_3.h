@@ -98,6 +98,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   surface (a chain turning inside a face, a stretched face over a convex region) slide on their
  *   surface or curve to bring the centre closer, as far as the polish's guards allow (no cell
  *   below min(its quality, 0.35)); `Meshing_statistics::fidelity_moves` counts the moves.
+ *   Then the vertices where a feature chain turns inside a face (left off their curve) are
+ *   pulled towards it, to no closer than 0.1 local sizes, within the same guards: the face no
+ *   longer folds along its diagonal (`Meshing_statistics::turn_moves`).
  *
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)

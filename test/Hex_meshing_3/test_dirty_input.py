@@ -243,14 +243,17 @@ CAPTURE_RETRIED = {"cube_nonmanifold", "elephant", "fandisk_crack", "teapot"}
 # edge turns by 20 to 30 degrees, 0.50 within the tolerance)
 # (fandisk 1.92 / 8.56 -> 1.21 / 0.85 with its curved parts at s/2: the input edge of 28 to 32
 # degrees at (0.26, 0.14, -0.34) is where the input is farthest)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.4, 0.75), "anchor_dupflip": (0.4, 0.75), "t20_part": (0.75, 0.8),
-                          "fandisk": (1.3, 0.95), "cube": (0.05, 0.05)}
+# (the vertices where a chain turns inside a face pulled towards their curve, `turn_polish()`:
+# anchor 0.33 -> 0.24 input->mesh, fandisk 1.21 -> 0.66; t20_part 0.70 / 0.74 -> 0.70 / 0.75)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.75), "anchor_dupflip": (0.3, 0.75), "t20_part": (0.75, 0.8),
+                          "fandisk": (0.75, 0.95), "cube": (0.05, 0.05)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases; 0.66 / 0.85 with its
 # curved parts at s/2)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.35, 0.75), "anchor_dupflip": (0.35, 0.75), "t20_part": (0.35, 0.8),
-                                   "fandisk": (0.75, 0.95), "cube": (0.05, 0.05)}
+# (with the turns pulled: anchor 0.24 / 0.69, t20_part 0.35 / 0.75, fandisk 0.28 / 0.85)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.3, 0.75), "anchor_dupflip": (0.3, 0.75), "t20_part": (0.4, 0.8),
+                                   "fandisk": (0.35, 0.95), "cube": (0.05, 0.05)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)

@@ -450,6 +450,8 @@ public:
     double loosen_corner = 0.1;             ///< ... and with its corner vertices free to leave their corner's point by at most this (x local size; 0: never)
     double second_polish_pyramid_weight = 2;   ///< the second polish counts the face pyramids at this many times their value (1: no second polish)
     int fidelity_passes = 3;                ///< sweeps of `fidelity_polish()` (0: none)
+    int turn_passes = 2;                    ///< sweeps of `turn_polish()` (0: none)
+    double turn_distance = 0.1;             ///< ... which brings the vertices where a chain turns inside a face no closer than this to their curve (x local size)
     int joint_passes = 10;                  ///< improve() passes over a released vertex's neighbours while it is held on the surface (0: no joint moves)
     double joint_quality = 0.25;            ///< ... kept if no cell of theirs falls below min(its quality, this)
     double sheet_cap_quality = 0.2;         ///< a sheet's cap vertex goes onto the sheet's border if no cell falls below min(its quality, this) (and none turns concave, no face split worsens)
@@ -528,6 +530,7 @@ public:
       second_polish = false;
     }
     if(!cancelled) fidelity_polish(visitor);
+    if(!cancelled) turn_polish(visitor);
     lap("polish");
     assign_patches();
     release_work_data();
@@ -1220,7 +1223,7 @@ private:
         for(std::size_t i = 0; i < pc.size(); ++i) {
           const Index v = pc[i];
           used[v] = 1;
-          if(skip[i]) turn_vertices.push_back(v);
+          if(skip[i]) { turn_vertices.push_back(v); turn_curve.push_back(int(c)); }
           if(kind[v] != SURFACE || skip[i]) continue;   // corners stay; shared ends are placed once
           kind[v] = CURVE;
           curve_of[v] = int(c);
@@ -1270,6 +1273,7 @@ private:
             kind[w] = SURFACE;
             --rep.curve_vertices;
             turn_vertices.push_back(w);
+            turn_curve.push_back(curve_of[w]);
           }
         break;
       }
@@ -2594,11 +2598,8 @@ private:
       return (kind[w] == SURFACE || kind[w] == CURVE) && !(w < left_feature.size() && left_feature[w]);
     };
     const bool polish_before = use_polish;
-    const double fq = opt.polish_quality;
     use_polish = true;
-    std::vector<Index> cells;
-    std::vector<double> q0, sj0, split0;
-    std::vector<char> conc0;
+    Move_guard guard;
     for(int pass = 0; pass < opt.fidelity_passes && !cancelled; ++pass) {
       std::vector<Index> work;
       for(std::size_t f = 0; f < top_faces.size(); ++f)
@@ -2630,12 +2631,7 @@ private:
         move(v, x0);
         const double gn = norm(g);
         if(!(gn > 0)) continue;
-        affected_cells(v, cells);
-        q0.resize(cells.size()); sj0.resize(cells.size()); split0.resize(cells.size()); conc0.resize(cells.size());
-        for(std::size_t i = 0; i < cells.size(); ++i) {
-          q0[i] = cell_quality(cells[i]); sj0[i] = cell_sj(cells[i]); split0[i] = cell_split(cells[i]); conc0[i] = cell_concave(cells[i]);
-        }
-        const double nonortho_cap = (std::max)(opt.max_non_orthogonality, max_non_orthogonality(cells));
+        guard.take(*this, v);
         const bool on_rim = onto_hole_rim(v, x0);
         bool done = false;
         for(double alpha : {0.4, 0.2, 0.1, 0.05}) {
@@ -2643,20 +2639,96 @@ private:
           if(!on_rim && onto_hole_rim(v, x)) continue;   // (its cells towards the cap would collapse)
           move(v, x);
           if(!(objective(v) < D0 * 0.98)) continue;
-          bool ok = true;
-          for(std::size_t i = 0; i < cells.size() && ok; ++i) {
-            const Index c = cells[i];
-            const double floor = (std::min)(q0[i], fq);
-            double sj = 1;   // (set when the quality reaches the floor)
-            ok = cell_quality_above(c, floor, &sj) >= floor && sj >= (std::min)(sj0[i], fq) &&
-                 cell_split(c) >= (std::min)(split0[i], opt.min_face_split_quality) && (conc0[i] || !cell_concave(c));
-          }
-          if(ok && max_non_orthogonality(cells) > nonortho_cap) ok = false;
-          if(ok) { done = true; break; }
+          if(guard.passes(*this)) { done = true; break; }
         }
         if(done) ++moved; else move(v, x0);
       }
       rep.fidelity_moves += moved;
+      if(moved == 0) break;
+    }
+    use_polish = polish_before;
+  }
+
+  // The polish's guards on a move of one vertex (`fidelity_polish()`, `turn_polish()`): no cell
+  // of the vertex (and of the hanging nodes it moves) below min(its quality, polish_quality), nor
+  // its scaled Jacobian, no face split worse than min(its own, min_face_split_quality), no cell
+  // made concave, the non-orthogonality not above max(its value, max_non_orthogonality).
+  // `take()` before the move, `passes()` after it.
+  struct Move_guard
+  {
+    std::vector<Index> cells;
+    std::vector<double> q0, sj0, split0;
+    std::vector<char> conc0;
+    double nonortho_cap = 0;
+    void take(const Boundary_capture_3& bc, Index v)
+    {
+      bc.affected_cells(v, cells);
+      take_cells(bc);
+    }
+    void take_cells(const Boundary_capture_3& bc)
+    {
+      q0.resize(cells.size()); sj0.resize(cells.size()); split0.resize(cells.size()); conc0.resize(cells.size());
+      for(std::size_t i = 0; i < cells.size(); ++i) {
+        q0[i] = bc.cell_quality(cells[i]); sj0[i] = bc.cell_sj(cells[i]);
+        split0[i] = bc.cell_split(cells[i]); conc0[i] = bc.cell_concave(cells[i]);
+      }
+      nonortho_cap = (std::max)(bc.opt.max_non_orthogonality, bc.max_non_orthogonality(cells));
+    }
+    bool passes(const Boundary_capture_3& bc) const
+    {
+      const double fq = bc.opt.polish_quality;
+      for(std::size_t i = 0; i < cells.size(); ++i) {
+        const Index c = cells[i];
+        const double floor = (std::min)(q0[i], fq);
+        double sj = 1;   // (set when the quality reaches the floor)
+        if(!(bc.cell_quality_above(c, floor, &sj) >= floor && sj >= (std::min)(sj0[i], fq) &&
+             bc.cell_split(c) >= (std::min)(split0[i], bc.opt.min_face_split_quality) && (conc0[i] || !bc.cell_concave(c))))
+          return false;
+      }
+      return !(bc.max_non_orthogonality(cells) > nonortho_cap);
+    }
+  };
+
+  // Where a feature chain turns inside a top face (`turn_vertices`: two chain edges in a row in
+  // one face), the middle vertex was left off its curve: on it, the face would have three corners
+  // in a line. Where the optimisation leaves it (about half a cell off), the face straddles the
+  // curve along its diagonal and folds by about half the curve's angle on both sides: the mesh's
+  // creases run along all four of its edges, up to 0.7 cell sizes off the curve. Pulled towards
+  // its curve, on its surface region, the face lies mostly on one side and the crease follows the
+  // chain's two edges, closer to the curve. Each such vertex takes the longest of the steps 3/4,
+  // 1/2, 1/4 of the way to `turn_distance` local sizes from its curve that passes the polish's
+  // guards (`Move_guard`).
+  template <typename Visitor>
+  void turn_polish(Visitor& visitor)
+  {
+    if(opt.turn_passes <= 0 || turn_vertices.empty() || turn_curve.size() != turn_vertices.size()) return;
+    const bool polish_before = use_polish;
+    use_polish = true;
+    Move_guard guard;
+    for(int pass = 0; pass < opt.turn_passes && !cancelled; ++pass) {
+      std::size_t moved = 0;
+      for(std::size_t i = 0; i < turn_vertices.size(); ++i) {
+        if(i % 64 == 63 && !visitor.go_further(1.0)) { cancelled = true; break; }
+        const Index v = turn_vertices[i];
+        const int c = turn_curve[i];
+        if(kind[v] != SURFACE || c < 0 || (v < left_feature.size() && left_feature[v])) continue;
+        const Vec3 x0 = P[v];
+        const Vec3 target = clamp_planes(v, closest_on_curve(x0, c));
+        const double d0 = norm(sub(target, x0)), keep = opt.turn_distance * local_size(v);
+        if(!(d0 > keep * 1.05)) continue;
+        guard.take(*this, v);
+        const bool on_rim = onto_hole_rim(v, x0);
+        bool done = false;
+        for(double t : {0.75, 0.5, 0.25}) {
+          const Vec3 x = constrain(v, add(x0, mul(sub(target, x0), t * (d0 - keep) / d0)));
+          if(!on_rim && onto_hole_rim(v, x)) continue;
+          if(!(norm(sub(closest_on_curve(x, c), x)) < 0.98 * d0)) continue;
+          move(v, x);
+          if(guard.passes(*this)) { done = true; break; }
+        }
+        if(done) ++moved; else move(v, x0);
+      }
+      rep.turn_moves += moved;
       if(moved == 0) break;
     }
     use_polish = polish_before;
@@ -3371,7 +3443,7 @@ private:
     drop(quality_cache); drop(quality_at); drop(moved_at); for(auto& f : failed_at) drop(f);
     drop(split_faces); drop(face_neighbour); drop(kind); drop(planes); drop(twin); drop(inner);
     drop(inner_of); drop(top_faces); drop(curve_of); drop(hloc); drop(vregion); drop(face_region);
-    drop(tri_region); drop(pillow_sector_faces); drop(pillow_twins); drop(turn_vertices);
+    drop(tri_region); drop(pillow_sector_faces); drop(pillow_twins); drop(turn_vertices); drop(turn_curve);
     hole_tree.reset(); drop(hole_segments); drop(near_hole); drop(sheet_caps);
 #if defined(__GLIBC__)
     // freed in many small blocks, which the allocator keeps, while the cleanup's large arrays are
@@ -3524,6 +3596,7 @@ private:
   std::vector<std::unique_ptr<Segment_tree>> curve_trees;
   std::vector<int> curve_of;
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
+  std::vector<int> turn_curve;        // ... the curve of each
   std::unordered_set<std::uint64_t> feature_edges;
   std::map<Index, std::vector<std::size_t>> pillow_sector_faces;   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
   std::map<Index, std::vector<Index>> pillow_twins;   // a pillowed chain vertex -> its copies, one per sector
