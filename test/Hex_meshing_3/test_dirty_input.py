@@ -251,8 +251,9 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.75), "anchor_dupflip": (0.3, 0.75), 
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases; 0.66 / 0.85 with its
 # curved parts at s/2)
-# (with the turns pulled: anchor 0.24 / 0.69, t20_part 0.35 / 0.75, fandisk 0.28 / 0.85)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.3, 0.75), "anchor_dupflip": (0.3, 0.75), "t20_part": (0.4, 0.8),
+# (with the turns pulled: anchor 0.24 / 0.69, t20_part 0.35 / 0.75, fandisk 0.28 / 0.85; with the
+# vertices that would flatten a face pulled too, t20_part 0.35 / 0.63)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.3, 0.75), "anchor_dupflip": (0.3, 0.75), "t20_part": (0.4, 0.7),
                                    "fandisk": (0.35, 0.95), "cube": (0.05, 0.05)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)

@@ -1241,7 +1241,8 @@ private:
     if(std::find(pillow.begin(), pillow.end(), 1) != pillow.end()) pillow_chains(captured, pillow);
     // a top face with a curve vertex between two other snapped corners of it is flat where the
     // three are collinear (a path back in a face it left, or two curves side by side): that
-    // vertex goes back to the surface, the curve crosses the face
+    // vertex goes back to the surface, the curve crosses the face (a turn: `turn_polish()`
+    // brings it as close to its curve as the cells allow)
     auto snapped = [&](Index v) { return kind[v] == CURVE || kind[v] == CORNER; };
     for(std::size_t f : top_faces) {
       const auto& q = m.boundary_faces[f].vertices;
@@ -1249,6 +1250,8 @@ private:
         if(kind[q[k]] == CURVE && snapped(q[(k + 1) % 4]) && snapped(q[(k + 3) % 4])) {
           kind[q[k]] = SURFACE;
           --rep.curve_vertices;
+          turn_vertices.push_back(q[k]);
+          turn_curve.push_back(curve_of[q[k]]);
           break;
         }
     }
@@ -2551,9 +2554,46 @@ private:
       }
     }
     for(Index v : released_list) if(kind[v] == RELEASED) rep.unreached_vertices.push_back(P[v]);
-    for(Index v : turn_vertices) rep.curve_turns.push_back(P[v]);
+    {
+      std::vector<Index> turns = turn_vertices;   // (a vertex may be a turn of two faces)
+      std::sort(turns.begin(), turns.end());
+      turns.erase(std::unique(turns.begin(), turns.end()), turns.end());
+      for(Index v : turns) rep.curve_turns.push_back(P[v]);
+    }
   }
 
+
+  // how far the centre of top face f stands off the surface, relative to the smallest local size
+  // of its corners (a hanging corner's own distance counts: its masters put it on the face's
+  // edge, not on the surface)
+  double top_face_centre_distance(std::size_t f) const
+  {
+    const auto& q = m.boundary_faces[top_faces[f]].vertices;
+    Vec3 c{{0, 0, 0}};
+    double h = 1e300;
+    for(Index w : q) { c = add(c, P[w]); h = (std::min)(h, local_size(w)); }
+    c = mul(c, 0.25);
+    double dist = CGAL::to_double(d.squared_distance(Point_3(c[0], c[1], c[2])));
+    for(Index w : q)
+      if(kind[w] == HANGING) dist = (std::max)(dist, CGAL::to_double(d.squared_distance(Point_3(P[w][0], P[w][1], P[w][2]))));
+    return std::sqrt(dist) / h;
+  }
+  // the largest of those distances over the top faces of v and of the hanging nodes that follow
+  // it (not the faces with a cap or released corner)
+  double top_face_offset(Index v) const
+  {
+    double worst = 0;
+    for(std::size_t f : vertex_top_faces[v]) if(!top_face_skipped(f)) worst = (std::max)(worst, top_face_centre_distance(f));
+    for(Index h : deps[v])
+      if(h < vertex_top_faces.size())
+        for(std::size_t f : vertex_top_faces[h]) if(!top_face_skipped(f)) worst = (std::max)(worst, top_face_centre_distance(f));
+    return worst;
+  }
+  bool top_face_skipped(std::size_t f) const
+  {
+    for(Index w : m.boundary_faces[top_faces[f]].vertices) if(kind[w] == CAP || kind[w] == RELEASED) return true;
+    return false;
+  }
 
   // The faces of the buffer's outer surface whose centre stands off the surface (where a feature
   // chain turns inside a face, or a stretched face bends over a convex region) have their corners
@@ -2568,31 +2608,7 @@ private:
   void fidelity_polish(Visitor& visitor)
   {
     if(opt.fidelity_passes <= 0 || top_faces.empty()) return;
-    auto centre_distance = [&](std::size_t f) {
-      const auto& q = m.boundary_faces[top_faces[f]].vertices;
-      Vec3 c{{0, 0, 0}};
-      double h = 1e300;
-      for(Index w : q) { c = add(c, P[w]); h = (std::min)(h, local_size(w)); }
-      c = mul(c, 0.25);
-      double dist = CGAL::to_double(d.squared_distance(Point_3(c[0], c[1], c[2])));
-      // a hanging node of the face is where its masters put it (on the face's edge, not on the surface)
-      for(Index w : q)
-        if(kind[w] == HANGING) dist = (std::max)(dist, CGAL::to_double(d.squared_distance(Point_3(P[w][0], P[w][1], P[w][2]))));
-      return std::sqrt(dist) / h;
-    };
-    auto skip_face = [&](std::size_t f) {
-      for(Index w : m.boundary_faces[top_faces[f]].vertices) if(kind[w] == CAP || kind[w] == RELEASED) return true;
-      return false;
-    };
-    // over the vertex's top faces and those of the hanging nodes that follow it
-    auto objective = [&](Index v) {
-      double worst = 0;
-      for(std::size_t f : vertex_top_faces[v]) if(!skip_face(f)) worst = (std::max)(worst, centre_distance(f));
-      for(Index h : deps[v])
-        if(h < vertex_top_faces.size())
-          for(std::size_t f : vertex_top_faces[h]) if(!skip_face(f)) worst = (std::max)(worst, centre_distance(f));
-      return worst;
-    };
+    auto objective = [&](Index v) { return top_face_offset(v); };
     // the vertices that slide: surface and curve vertices, not those the joint moves let off their feature
     auto slidable = [&](Index w) {
       return (kind[w] == SURFACE || kind[w] == CURVE) && !(w < left_feature.size() && left_feature[w]);
@@ -2603,7 +2619,7 @@ private:
     for(int pass = 0; pass < opt.fidelity_passes && !cancelled; ++pass) {
       std::vector<Index> work;
       for(std::size_t f = 0; f < top_faces.size(); ++f)
-        if(!skip_face(f) && centre_distance(f) > opt.fidelity_distance)
+        if(!top_face_skipped(f) && top_face_centre_distance(f) > opt.fidelity_distance)
           for(Index w : m.boundary_faces[top_faces[f]].vertices)
             if(slidable(w)) work.push_back(w);
             else if(kind[w] == HANGING)   // its masters move it
@@ -2697,7 +2713,9 @@ private:
   // its curve, on its surface region, the face lies mostly on one side and the crease follows the
   // chain's two edges, closer to the curve. Each such vertex takes the longest of the steps 3/4,
   // 1/2, 1/4 of the way to `turn_distance` local sizes from its curve that passes the polish's
-  // guards (`Move_guard`).
+  // guards (`Move_guard`) and leaves no top face of it farther off the surface than max(before,
+  // `fidelity_distance`) (`top_face_offset()`; without it rotor got 4 more faces beyond s/4).
+  // (Also the curve vertices put back on the surface where their face would be flat.)
   template <typename Visitor>
   void turn_polish(Visitor& visitor)
   {
@@ -2718,13 +2736,15 @@ private:
         if(!(d0 > keep * 1.05)) continue;
         guard.take(*this, v);
         const bool on_rim = onto_hole_rim(v, x0);
+        // (nor may a face of it stand farther off the surface than max(before, fidelity_distance))
+        const double offset_cap = (std::max)(top_face_offset(v), opt.fidelity_distance);
         bool done = false;
         for(double t : {0.75, 0.5, 0.25}) {
           const Vec3 x = constrain(v, add(x0, mul(sub(target, x0), t * (d0 - keep) / d0)));
           if(!on_rim && onto_hole_rim(v, x)) continue;
           if(!(norm(sub(closest_on_curve(x, c), x)) < 0.98 * d0)) continue;
           move(v, x);
-          if(guard.passes(*this)) { done = true; break; }
+          if(top_face_offset(v) <= offset_cap && guard.passes(*this)) { done = true; break; }
         }
         if(done) ++moved; else move(v, x0);
       }
