@@ -2608,7 +2608,6 @@ private:
   void fidelity_polish(Visitor& visitor)
   {
     if(opt.fidelity_passes <= 0 || top_faces.empty()) return;
-    auto objective = [&](Index v) { return top_face_offset(v); };
     // the vertices that slide: surface and curve vertices, not those the joint moves let off their feature
     auto slidable = [&](Index w) {
       return (kind[w] == SURFACE || kind[w] == CURVE) && !(w < left_feature.size() && left_feature[w]);
@@ -2631,7 +2630,7 @@ private:
       for(Index v : work) {
         if(++tried % 64 == 0 && !visitor.go_further(1.0)) { cancelled = true; break; }
         const Vec3 x0 = P[v];
-        const double D0 = objective(v);
+        const double D0 = top_face_offset(v);
         if(D0 <= opt.fidelity_distance) continue;
         const double h = local_size(v);
         const double eps = 1e-3 * h;
@@ -2639,10 +2638,10 @@ private:
         for(int a = 0; a < 3; ++a) {
           Vec3 y = x0; y[a] += eps;
           move(v, constrain(v, y));
-          const double Dp = objective(v);
+          const double Dp = top_face_offset(v);
           y = x0; y[a] -= eps;
           move(v, constrain(v, y));
-          g[a] = (Dp - objective(v)) / (2 * eps);
+          g[a] = (Dp - top_face_offset(v)) / (2 * eps);
         }
         move(v, x0);
         const double gn = norm(g);
@@ -2654,7 +2653,7 @@ private:
           const Vec3 x = constrain(v, sub(x0, mul(g, alpha * h / gn)));
           if(!on_rim && onto_hole_rim(v, x)) continue;   // (its cells towards the cap would collapse)
           move(v, x);
-          if(!(objective(v) < D0 * 0.98)) continue;
+          if(!(top_face_offset(v) < D0 * 0.98)) continue;
           if(guard.passes(*this)) { done = true; break; }
         }
         if(done) ++moved; else move(v, x0);
@@ -2679,10 +2678,6 @@ private:
     void take(const Boundary_capture_3& bc, Index v)
     {
       bc.affected_cells(v, cells);
-      take_cells(bc);
-    }
-    void take_cells(const Boundary_capture_3& bc)
-    {
       q0.resize(cells.size()); sj0.resize(cells.size()); split0.resize(cells.size()); conc0.resize(cells.size());
       for(std::size_t i = 0; i < cells.size(); ++i) {
         q0[i] = bc.cell_quality(cells[i]); sj0[i] = bc.cell_sj(cells[i]);
@@ -2719,7 +2714,8 @@ private:
   template <typename Visitor>
   void turn_polish(Visitor& visitor)
   {
-    if(opt.turn_passes <= 0 || turn_vertices.empty() || turn_curve.size() != turn_vertices.size()) return;
+    CGAL_assertion(turn_curve.size() == turn_vertices.size());
+    if(opt.turn_passes <= 0 || turn_vertices.empty()) return;
     const bool polish_before = use_polish;
     use_polish = true;
     Move_guard guard;
