@@ -188,32 +188,37 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd
  *   \cgalParamNBegin{capture_retry_cells}
- *     \cgalParamDescription{where the capture leaves a cell whose scaled Jacobian is below 0.3, a
- *       cell concave for OpenFOAM or a face failing its tet decomposition, the mesh has at most
- *       this many cells and there are feature curves, the capture runs again from
- *       the same grid (without pillows if the first had them, see `feature_pillows`, then with other
- *       ratios of the feature paths' turn penalty to snap weight, 2.5, 3.75, 1.67 after the default
- *       5) until one leaves no cell below 0.3 and no fault that
- *       checkMesh -allGeometry reports (cells concave for OpenFOAM, faces failing its tet
- *       decomposition, on the points an OpenFOAM case gets); the mesh with the fewest such faults,
- *       then cells below 0.3, then the highest minimum is kept (deterministic; at most four
- *       captures, five with pillows; the first removes the buffer cells at its faults, which count as its faults, the
- *       retries do not, and a retry kept that has faults runs a fifth time with the removal; none
- *       with `polish_worst_cells(false)`). The retries are not run if the first capture leaves
- *       more than 10 cells below 0.3 (the grid is then too coarse for the shape, and other paths
- *       do not lift them). 0: never. A cancellation during a retry
- *       keeps the best mesh so far. `Meshing_statistics::capture_tries` and `capture_choice` say
- *       what was done. Then, where the mesh kept (whose staircase had at most this many cells) has
- *       a boundary face farther than a quarter of the criteria's surface size from the input
- *       (`Hex_meshing_3::boundary_fidelity()`) or a cell below 0.3 (at most 10), the
- *       whole mesh is made again, its captures retried as above, with the staircase's surface
- *       vertices 0.25 cell sizes from the surface, then 0.2, instead of 0.4, until one has none
- *       of them nor such a fault; the mesh with the fewest faults, then cells below 0.3, then far faces, then
- *       the highest minimum is kept (`Meshing_statistics::staircase_tries` and `staircase_gap`).
- *       A thinner buffer reaches some corners and concave curves that a thicker one does not, and
- *       loses others: on the 15 test surfaces at their test sizes, the files with no face beyond
- *       a quarter surface size go from 8 to 10 (fandisk, fandisk_crack), for 1.8 times the time
- *       summed over the 15 (each of the 7 files with far faces is made two or three times)}
+ *     \cgalParamDescription{the retries' budget, in cells: where the capture leaves a cell whose
+ *       scaled Jacobian is below 0.3, a cell concave for OpenFOAM or a face failing its tet
+ *       decomposition and there are feature curves, the capture runs again from the same grid
+ *       (without pillows if the first had them, see `feature_pillows`, then with other ratios of
+ *       the feature paths' turn penalty to snap weight, 2.5, 3.75, 1.67 after the default 5) until
+ *       one leaves no cell below 0.3 and no fault that checkMesh -allGeometry reports (cells
+ *       concave for OpenFOAM, faces failing its tet decomposition, on the points an OpenFOAM case
+ *       gets). Then, where the mesh kept has a boundary face farther than a quarter of the
+ *       criteria's surface size from the input (`Hex_meshing_3::boundary_fidelity()`), such a
+ *       fault or a cell below 0.3 (at most 10), the whole mesh is made again, its captures
+ *       retried as above, with the staircase's surface vertices 0.25 cell sizes from the surface,
+ *       then 0.2, instead of 0.4, until one has none of them. Every retry counts the cells of the
+ *       first capture's mesh against this budget, and runs only if they fit in what is left: a
+ *       mesh of N cells gets at most budget / N retries (none above the budget), so small meshes
+ *       get every retry and large ones few (elephant at diagonal / 80 with `--size 4h
+ *       --thin-cells 5`, 89,500 cells: 2 retries, 29 s, against 8 and 80 s without a budget, for
+ *       a minimum scaled Jacobian of 0.253 instead of 0.255). The captures of one grid are ranked
+ *       by the faults left (after the first capture's removal of the buffer cells at its faults;
+ *       a retry kept that has faults runs once more with the removal, outside the budget), then
+ *       the cells below 0.3, the worst of them, the faults the removal found (each removed cell
+ *       leaves a staircase face), the minimum; the meshes of the staircases by the faults left,
+ *       the cells below 0.3, the faces beyond a quarter surface size, the minimum; the best is
+ *       kept (deterministic). No retry with `polish_worst_cells(false)`, nor where the first
+ *       capture leaves more than 10 cells below 0.3 (the grid is then too coarse for the shape,
+ *       and other paths do not lift them). 0: never. A cancellation during a retry keeps the best
+ *       mesh so far. `Meshing_statistics::capture_tries`, `capture_choice`, `staircase_tries` and
+ *       `staircase_gap` say what was done. A thinner buffer reaches some corners and concave
+ *       curves that a thicker one does not, and loses others: on the 15 test surfaces at their
+ *       test sizes, the files with no face beyond a quarter surface size go from 8 to 10
+ *       (fandisk, fandisk_crack), for 1.8 times the time summed over the 15 (each of the 7 files
+ *       with far faces is made two or three times); the budget changes none of them}
  *     \cgalParamType{`std::size_t`}
  *     \cgalParamDefault{200,000}
  *   \cgalParamNEnd
@@ -272,6 +277,13 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   const bool body_fitted = choose_parameter(get_parameter(np, HNP::body_fitted), true);
   const bool polish = choose_parameter(get_parameter(np, HNP::polish_worst_cells), true);
   const std::size_t retry_cells = choose_parameter(get_parameter(np, HNP::capture_retry_cells), std::size_t(200000));
+  // The retries' budget: the cells of the meshes they make, together, each counted as the first
+  // capture's mesh (`capture_cost`; a capture's time grows with them). A retry runs only if it fits
+  // in what is left, so small meshes may run every retry and large ones fewer (elephant at
+  // diagonal / 80, 89,500 cells, ran 9 captures in 80 s for a minimum scaled Jacobian of 0.253 ->
+  // 0.255). The rerun of a kept retry with the removal of its OpenFOAM faults is not counted: the
+  // mesh kept needs it.
+  std::size_t retry_left = retry_cells, capture_cost = 0;
   // the cells below 0.3 and the minimum scaled Jacobian (a NaN counts as -1)
   auto low_cells = [](const HexMesh& mesh) {
     std::size_t below = 0;
@@ -305,6 +317,19 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     const auto low = low_cells(mesh);
     return std::make_tuple(concave + small + std::size_t(std::count(ft.begin(), ft.end(), char(1))), low.first,
                            -low.second);
+  };
+  // The captures of one staircase are compared by (in this order) the faults left in the mesh
+  // (`residual`: after the first capture's removal; none for a retry, whose faults the removal
+  // takes if it is kept), the cells below 0.3, the worst of them, the faults found (`found`: the
+  // buffer cells the removal takes, each leaves a staircase face at the boundary), the minimum.
+  // Before, the faults found came first: at t20_part at diagonal / 80 (`--size 4h --thin-cells 5`)
+  // a retry with no fault and a cell at 0.024 beat the first capture with one buffer cell removed
+  // and its worst cell at 0.278 (once the retries had a budget, below, and did not reach the
+  // capture with one fault and no cell below 0.3); and the first capture's removal may leave a
+  // fault (anchor at diagonal / 40: a concave cell).
+  auto rank = [](std::size_t residual, std::size_t found, const auto& f) {
+    const std::size_t low = std::get<1>(f);
+    return std::make_tuple(residual, low, low > 0 ? std::get<2>(f) : 0.0, found, std::get<2>(f));
   };
   // Other paths lift a few cells below 0.3, not many: where the first capture leaves more than
   // `max_low_cells` of them, the grid is too coarse for the shape there and the retries are not
@@ -354,7 +379,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // deterministic, at most four captures, on such meshes only (the report gives `capture_tries`
       // and `capture_choice`). (Not with `polish_worst_cells(false)`: the retries look for the
       // best polished mesh.)
-      const bool may_retry = out.number_of_cells() <= retry_cells && retry_cells > 0 && copt.patch_iterations > 0 &&
+      const bool may_retry = out.number_of_cells() <= retry_left && retry_cells > 0 && copt.patch_iterations > 0 &&
                              !features->curves().empty();
       // The buffer cells that checkMesh -allGeometry would still find concave or at a face failing
       // the tet decomposition are removed at the end of the capture (`Meshing_statistics::
@@ -385,18 +410,23 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       Capture first_capture(out, domain, features, stats, options_of(0));
       bool ran = first_capture.run(visitor);
       stats.capture_tries = 1;
+      if(capture_cost == 0) capture_cost = (std::max)(out.number_of_cells(), std::size_t(1));
       if(ran && may_retry) {
-        // the first capture's faults: those its removal found (as `faults()` counts them on the
-        // same capture without the removal); its cells below 0.3 and minimum after the removal
-        auto best = faults(out);
-        std::get<0>(best) = first_capture.foam_faults_found;
+        // the first capture's faults: those left after its removal, and those its removal found
+        // (as `faults()` counts them on the same capture without the removal); its cells below
+        // 0.3 and minimum after the removal
+        const auto f0 = faults(out);
+        auto best = rank(std::get<0>(f0), first_capture.foam_faults_found, f0);
         // Where the first capture made no pillow it was the capture without them, which is not run
         // again; after one with pillows, the one without runs whatever the count of cells below 0.3,
         // and its own count decides whether the other weights are tried.
         const bool first_had_pillows = sequence[0].pillows && stats.pillow_cells > 0;
         if(sequence[0].pillows && !first_had_pillows) sequence.erase(sequence.begin() + 1);
         bool hopeless = std::get<1>(best) > max_low_cells && !first_had_pillows;
-        for(std::size_t choice = 1; choice < sequence.size() && !hopeless && (std::get<0>(best) > 0 || std::get<1>(best) > 0); ++choice) {
+        for(std::size_t choice = 1; choice < sequence.size() && !hopeless &&
+                                    (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<3>(best) > 0); ++choice) {
+          if(capture_cost > retry_left) break;   // (the budget is spent)
+          retry_left -= capture_cost;
           typename Capture::Options o = options_of(choice);
           o.remove_foam_faults = false;
           HexMesh trial(*grid);
@@ -405,17 +435,18 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           ++stats.capture_tries;
           if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
           const auto f = faults(trial);
+          const auto r = rank(0, std::get<0>(f), f);
           if(choice == 1 && first_had_pillows) hopeless = std::get<1>(f) > max_low_cells;
-          if(f < best) {
+          if(r < best) {
             const std::size_t tries = stats.capture_tries;
-            best = f;
+            best = r;
             out = std::move(trial);
             stats = st;
             stats.capture_tries = tries;
             stats.capture_choice = choice;
           }
         }
-        if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<0>(best) > 0) {
+        if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<3>(best) > 0) {
           typename Capture::Options o = options_of(stats.capture_choice);
           o.remove_foam_faults = true;
           HexMesh trial(*grid);
@@ -454,7 +485,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   Hex_meshing_3::Status status = mesh_once(gaps[0], out, stats, leaks, grid_cells);
   stats.staircase_tries = 1;
   stats.staircase_gap = gaps[0];
-  if(body_fitted && polish && retry_cells > 0 && grid_cells > 0 && grid_cells <= retry_cells &&
+  if(body_fitted && polish && retry_cells > 0 && grid_cells > 0 && grid_cells <= retry_left &&
      status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
     const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
     auto far_faces = [&](const HexMesh& mesh) {
@@ -476,6 +507,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     std::size_t tries = 1, choice = 0;
     for(std::size_t k = 1; k < std::size(gaps) && std::get<1>(best) <= max_low_cells &&
                            (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<2>(best) > 0); ++k) {
+      // (the budget: its first capture is counted here, its retries in `mesh_once()`)
+      if(capture_cost > retry_left) break;
+      retry_left -= capture_cost;
       HexMesh trial;
       Hex_meshing_3::Meshing_statistics st;
       std::vector<Hex_meshing_3::Region_leak> lk;

@@ -269,12 +269,14 @@ int main(int argc, char** argv)
   app.add_flag("--feature-pillows,!--no-feature-pillows", feature_pillows, "a sheet of hexahedra along each convex sharp "
                "curve whose chain runs within half a cell of it, two boundary faces meeting at the curve; where that leaves "
                "a cell below a scaled Jacobian of 0.3 or a checkMesh fault, the retries run without (default: on)");
-  app.add_option("--capture-retry-cells", capture_retry_cells, "where the boundary capture leaves a cell below a scaled "
-                 "Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition, it runs again (at most 4 times: without the feature pillows, then with other weights of the feature paths) on meshes of at "
-                 "most this many cells, and the mesh with the fewest checkMesh -allGeometry faults, then cells below 0.3 is "
-                 "kept; where the mesh kept has a boundary face beyond 1/4 of the surface size from the input or such a cell, "
-                 "the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead of "
-                 "0.4, and the best is kept (faults, cells below 0.3, far faces); 0: never (default 200000)");
+  app.add_option("--capture-retry-cells", capture_retry_cells, "the retries' budget, in cells: where the boundary "
+                 "capture leaves a cell below a scaled Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet "
+                 "decomposition, it runs again (without the feature pillows, then with other weights of the feature paths), "
+                 "and where the mesh kept still has such a cell or a boundary face beyond 1/4 of the surface size from the "
+                 "input, the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead "
+                 "of 0.4; each retry counts the first capture's cells against the budget and runs only if they fit (a mesh "
+                 "of N cells: at most budget / N retries); the best mesh is kept (faults, cells below 0.3, far faces); "
+                 "0: never (default 200000)");
   app.add_option("--smoothing-sweeps", smoothing_sweeps, "the boundary capture's main optimisation sweeps at most: more "
                  "raise the worst cells a little, at a cost in time (default 8)")->check(CLI::Range(1, 1000));
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
