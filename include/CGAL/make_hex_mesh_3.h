@@ -348,14 +348,13 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   }
 
   // One mesh: the grid, its staircase kept `gap` cell sizes off the surface, and its capture (with
-  // the retries of `capture_retry_cells`). `grid_cells`: the staircase's cells.
+  // the retries of `capture_retry_cells`).
   auto mesh_once = [&](double gap, HexMesh& out, Hex_meshing_3::Meshing_statistics& stats,
-                       std::vector<Hex_meshing_3::Region_leak>& leaks, std::size_t& grid_cells) {
+                       std::vector<Hex_meshing_3::Region_leak>& leaks) {
     Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
     Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor, body_fitted ? gap : 0.0);
     stats = mesher.statistics();
     leaks = mesher.leaks();
-    grid_cells = out.number_of_cells();
     mesher.release();   // the capture's memory peak need not hold the octree too
     if(body_fitted && status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
       visitor.on_phase_begin("capture", out.number_of_cells());
@@ -481,11 +480,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   static constexpr double gaps[] = {0.4, 0.25, 0.2};
   std::vector<Hex_meshing_3::Region_leak> leaks;
   Hex_meshing_3::Meshing_statistics stats;
-  std::size_t grid_cells = 0;
-  Hex_meshing_3::Status status = mesh_once(gaps[0], out, stats, leaks, grid_cells);
+  Hex_meshing_3::Status status = mesh_once(gaps[0], out, stats, leaks);
   stats.staircase_tries = 1;
   stats.staircase_gap = gaps[0];
-  if(body_fitted && polish && retry_cells > 0 && grid_cells > 0 && grid_cells <= retry_left &&
+  // (`capture_cost` is 0 where no capture ran; where the budget left has no room for another
+  // mesh, its far faces and faults are not counted)
+  if(body_fitted && polish && retry_cells > 0 && capture_cost > 0 && capture_cost <= retry_left &&
      status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
     const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
     auto far_faces = [&](const HexMesh& mesh) {
@@ -513,8 +513,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       HexMesh trial;
       Hex_meshing_3::Meshing_statistics st;
       std::vector<Hex_meshing_3::Region_leak> lk;
-      std::size_t gc = 0;
-      const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk, gc);
+      const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk);
       ++tries;
       if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
       if(trial.number_of_cells() == 0) continue;
