@@ -101,7 +101,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   Then the vertices where a feature chain turns inside a face (left off their curve) are
  *   pulled towards it, to no closer than 0.1 local sizes, within the same guards: the face no
  *   longer folds along its diagonal (`Meshing_statistics::turn_moves`); no face of the vertex may
- *   stand farther off the surface than before (or than 0.2 local sizes).
+ *   stand farther off the surface than before (or than 0.2 local sizes). Where its step alone
+ *   fails the guards, it is tried with the other vertices of its cells improved once after it, the
+ *   guards then holding on all their cells.
  *
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)
