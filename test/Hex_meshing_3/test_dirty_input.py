@@ -1117,9 +1117,10 @@ def main():
             check(b["loosened_vertices"] > 0, f"{stem}: {b['loosened_vertices']} feature vertices loosened (expected some)")
         check(len(b["missed_curves_first_100"]) == min(100, b["curves_missed"]) and
               len(b["curve_turns_first_100"]) == min(100, b["curve_turns"]) and
-              len(b["removed_buffer_cells_first_100"]) == min(100, b["removed_buffer_cells"]),
-              f"{stem}: the report locates the {b['curves_missed']} missed curves, the {b['curve_turns']} chain turns and "
-              f"the {b['removed_buffer_cells']} removed buffer cells")
+              len(b["removed_buffer_cells_first_100"]) == min(100, b["removed_buffer_cells"]) and
+              len(b["unsnapped_first_100"]) == min(100, b["unsnapped_vertices"]),
+              f"{stem}: the report locates the {b['curves_missed']} missed curves, the {b['curve_turns']} chain turns, "
+              f"the {b['removed_buffer_cells']} removed buffer cells and the {b['unsnapped_vertices']} unsnapped vertices")
         if stem in INPUT_WITHIN_HALF_SURFACE_SIZE:
             check(fi["samples"] == 10000 and fi["input_to_mesh_max"] <= 0.5 * s_,
                   f"{stem}: the {fi['samples']} points sampled on the input within 0.5 x surface size of the mesh boundary "

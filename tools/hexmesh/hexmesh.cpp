@@ -888,6 +888,7 @@ int main(int argc, char** argv)
           j["boundary"]["curve_turns"] = stats.curve_turns.size();
           j["boundary"]["curve_turns_first_100"] = first_100(stats.curve_turns);
           j["boundary"]["missed_curves_first_100"] = first_100(stats.missed_curves);
+          j["boundary"]["unsnapped_first_100"] = first_100(stats.unsnapped_at);
           nlohmann::ordered_json cs = nlohmann::ordered_json::object();
           for(const auto& st : stats.capture_seconds) cs[st.first] = st.second;
           j["boundary"]["step_seconds"] = cs;

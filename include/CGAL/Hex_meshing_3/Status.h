@@ -143,6 +143,9 @@ struct Meshing_statistics
   std::size_t foam_fault_cells = 0;         ///< buffer cells found concave, or at a face failing the tet decomposition, as checkMesh -allGeometry finds them on the OpenFOAM export (removed; `make_hex_mesh_3()`)
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
+  /// where the `unsnapped_vertices` are at the end of the optimisation: curve and corner vertices
+  /// that stayed on the surface, off their feature (the feature is lost there)
+  std::vector<std::array<double, 3>> unsnapped_at;
   /// the centres (vertex averages) of the `removed_buffer_cells`, where the staircase face is the
   /// boundary (its corners stand off the surface)
   std::vector<std::array<double, 3>> removed_buffer_cell_centres;

@@ -2555,6 +2555,8 @@ private:
       }
     }
     for(Index v : released_list) if(kind[v] == RELEASED) rep.unreached_vertices.push_back(P[v]);
+    for(const Lost& l : unsnapped_list) if(kind[l.v] != l.kind) rep.unsnapped_at.push_back(P[l.v]);
+    CGAL_assertion(rep.unsnapped_at.size() == rep.unsnapped_vertices);
     {
       std::vector<Index> turns = turn_vertices;   // (a vertex may be a turn of two faces)
       std::sort(turns.begin(), turns.end());
