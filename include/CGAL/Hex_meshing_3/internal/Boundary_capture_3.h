@@ -2586,19 +2586,23 @@ private:
   double top_face_offset(Index v) const
   {
     double worst = 0;
-    for(std::size_t f : vertex_top_faces[v]) if(!top_face_skipped(f)) worst = (std::max)(worst, top_face_centre_distance(f));
-    for(Index h : deps[v])
-      if(h < vertex_top_faces.size())
-        for(std::size_t f : vertex_top_faces[h]) if(!top_face_skipped(f)) worst = (std::max)(worst, top_face_centre_distance(f));
+    for_each_top_face(v, [&](std::size_t f) { if(!top_face_skipped(f)) worst = (std::max)(worst, top_face_centre_distance(f)); });
     return worst;
   }
   // whether a top face of `v` (or of a hanging node it moves) is left out of the fidelity's watch
   bool touches_skipped_top_face(Index v) const
   {
-    if(v < vertex_top_faces.size()) for(std::size_t f : vertex_top_faces[v]) if(top_face_skipped(f)) return true;
+    bool any = false;
+    for_each_top_face(v, [&](std::size_t f) { any = any || top_face_skipped(f); });
+    return any;
+  }
+  // the top faces of `v` and of the hanging nodes it moves
+  template <typename F>
+  void for_each_top_face(Index v, F f) const
+  {
+    if(v < vertex_top_faces.size()) for(std::size_t t : vertex_top_faces[v]) f(t);
     for(Index h : deps[v])
-      if(h < vertex_top_faces.size()) for(std::size_t f : vertex_top_faces[h]) if(top_face_skipped(f)) return true;
-    return false;
+      if(h < vertex_top_faces.size()) for(std::size_t t : vertex_top_faces[h]) f(t);
   }
   bool top_face_skipped(std::size_t f) const
   {
@@ -2745,6 +2749,7 @@ private:
     const bool polish_before = use_polish;
     use_polish = true;
     Move_guard guard;
+    std::vector<Vec3> steps;
     for(int pass = 0; pass < opt.turn_passes && !cancelled; ++pass) {
       std::size_t moved = 0;
       for(std::size_t i = 0; i < turn_vertices.size(); ++i) {
@@ -2760,16 +2765,21 @@ private:
         const bool on_rim = onto_hole_rim(v, x0);
         // (nor may a face of it stand farther off the surface than max(before, fidelity_distance))
         const double offset_cap = (std::max)(top_face_offset(v), opt.fidelity_distance);
-        bool done = false;
+        // the steps, those that stay off a hole's border and come closer to the curve
+        steps.clear();
         for(double t : {0.75, 0.5, 0.25}) {
           const Vec3 x = constrain(v, add(x0, mul(sub(target, x0), t * (d0 - keep) / d0)));
           if(!on_rim && onto_hole_rim(v, x)) continue;
           if(!(norm(sub(closest_on_curve(x, c), x)) < 0.98 * d0)) continue;
+          steps.push_back(x);
+        }
+        bool done = false;
+        for(const Vec3& x : steps) {
           move(v, x);
           if(top_face_offset(v) <= offset_cap && guard.passes(*this)) { done = true; break; }
         }
         if(!done) move(v, x0);
-        if(!done && opt.turn_joint) done = joint_turn_move(v, c, x0, target, d0, keep, on_rim, offset_cap);
+        if(!done && opt.turn_joint && !steps.empty()) done = joint_turn_move(v, x0, steps, offset_cap);
         if(done) ++moved;
       }
       rep.turn_moves += moved;
@@ -2778,8 +2788,8 @@ private:
     use_polish = polish_before;
   }
 
-  // A turn vertex's step that fails the guards alone, mostly by a cell of it falling a little
-  // below polish_quality (anchor: 0.37 -> 0.33), is tried again (the same steps) with the other
+  // A turn vertex's steps (`steps`, from `x0`) that fail the guards alone, mostly by a cell of it
+  // falling a little below polish_quality (anchor: 0.37 -> 0.33), are tried again with the other
   // vertices of its cells (the masters of hanging ones; not the corners, nor a vertex of a top
   // face with a cap vertex, whose distance is not watched) each improved once after it
   // (`improve()`, in index order); the guards then hold on the cells of all of them, and no top
@@ -2789,8 +2799,7 @@ private:
   // farther than s/4 from the input's sharp edges 51 -> 24, the farthest 0.69 -> 0.55 s; its
   // minimum scaled Jacobian 0.317 -> 0.345; inner vertices only: 35 creases, 0.317.) Returns
   // whether it moved.
-  bool joint_turn_move(Index v, int c, const Vec3& x0, const Vec3& target, double d0, double keep, bool on_rim,
-                       double offset_cap)
+  bool joint_turn_move(Index v, const Vec3& x0, const std::vector<Vec3>& steps, double offset_cap)
   {
     std::vector<Index> cells, vs;
     affected_cells(v, cells);
@@ -2814,10 +2823,7 @@ private:
       xs[i] = P[vs[i]];
       offset_caps[i] = (std::max)(top_face_offset(vs[i]), 0.5 * opt.fidelity_distance);
     }
-    for(double t : {0.75, 0.5, 0.25}) {
-      const Vec3 x = constrain(v, add(x0, mul(sub(target, x0), t * (d0 - keep) / d0)));
-      if(!on_rim && onto_hole_rim(v, x)) continue;
-      if(!(norm(sub(closest_on_curve(x, c), x)) < 0.98 * d0)) continue;
+    for(const Vec3& x : steps) {
       move(v, x);
       for(Index w : vs) improve(w, cells);
       bool ok = top_face_offset(v) <= (std::min)(offset_cap, (std::max)(v_offset, 0.5 * opt.fidelity_distance)) && g.passes(*this);
