@@ -1732,7 +1732,8 @@ void test_body_fitted()
               << ", input->mesh max " << bf.max_sample_distance / s << ", features both ways " << ff.input_to_mesh / s
               << " / " << ff.mesh_to_input / s << ", corners " << ff.max_corner_distance / s << " (x surface size); "
               << st.curves_captured << " curves captured, " << st.curves_missed << " missed, "
-              << st.unreached_vertices.size() << " vertices off the surface\n";
+              << st.unreached_vertices.size() << " vertices off the surface; staircase tries " << st.staircase_tries
+              << ", gap " << st.staircase_gap << "\n";
     // the capture removes buffer cells below 0.02 and releases few vertices; cells below 0.1 are
     // rare (fandisk: 1 of 3799 buffer cells; 25 before the shape energy)
     assert(qmin >= 0.02 && st.unreached_vertices.size() <= 20);
@@ -1742,10 +1743,12 @@ void test_body_fitted()
     // corner of a missed curve, (0.46, 0.256, 0.308), is left off; at the tests' sizes, with
     // --thin-cells 5, its worst corner went from 0.49 to 0.45); 2.21 since the mesh is made again
     // with the staircase closer to the surface where faces stand off it (the one kept, at 0.25
-    // cell sizes: 25 faces beyond s/4 instead of 32, features input->mesh 3.4 s instead of 5.1)
+    // cell sizes: 25 faces beyond s/4 instead of 32, features input->mesh 3.4 s instead of 5.1);
+    // since released curve vertices go back to their curve, the first (at 0.4 cell sizes) is kept
+    // again: 32 far faces, min 0.314, features 3.65 / 8.47 s (3.42 / 8.56 with the one at 0.25,
+    // min 0.340), corners 1.85 s, and all three are still made
     if(std::string(file) == "data/fandisk.off")
-      assert(st.curves_captured >= 31 && ff.max_corner_distance <= 2.4 * s && st.staircase_tries == 3 &&
-             st.staircase_gap == 0.25);
+      assert(st.curves_captured >= 31 && ff.max_corner_distance <= 2.4 * s && st.staircase_tries == 3);
     assert(bf.mean_face_distance <= 0.15 * s);
     // the faces beyond 1/4 surface size with their causes (`far_faces()`): all of them, farthest
     // first; the point given is the face's corner or centre named as its farthest, at that

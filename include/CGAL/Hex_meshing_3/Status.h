@@ -125,7 +125,7 @@ struct Meshing_statistics
   std::size_t curve_gaps = 0;               ///< ends of captured curves left 1.5 cells short (walled in by other curves at a corner)
   std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
   std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
-  std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface to untangle cells
+  std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface, or released into the volume, to untangle cells (they are brought back towards their feature afterwards, as far as their cells allow)
   std::size_t face_split_repairs = 0;       ///< vertex moves of the last repair, of faces none of whose diagonal splits was valid for OpenFOAM
   std::size_t non_orthogonality_repairs = 0;   ///< vertex moves that lowered the non-orthogonality of faces beyond 50 degrees
   std::size_t polish_moves = 0;   ///< vertex moves of the final polish that raised the worst cells (below 0.35)
@@ -144,7 +144,7 @@ struct Meshing_statistics
   /// surface vertices released into the volume to keep every cell valid (they miss the surface)
   std::vector<std::array<double, 3>> unreached_vertices;
   /// where the `unsnapped_vertices` are at the end of the optimisation: curve and corner vertices
-  /// that stayed on the surface, off their feature (the feature is lost there)
+  /// that did not get back onto their feature (the feature is lost there)
   std::vector<std::array<double, 3>> unsnapped_at;
   /// the centres (vertex averages) of the `removed_buffer_cells`, where the staircase face is the
   /// boundary (its corners stand off the surface)

@@ -2356,6 +2356,10 @@ private:
       if(cell_quality(c) <= 0)
         for(Index v : m.hexahedra[c])
           if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) {
+            if(kind[v] != SURFACE) {   // a feature vertex released: it goes back to its curve too
+              ++rep.unsnapped_vertices;
+              unsnapped_list.push_back({v, kind[v], P[v]});
+            }
             kind[v] = RELEASED;
             released = true;
             any_released = true;
