@@ -249,8 +249,10 @@ CAPTURE_RETRIED = {"cube_nonmanifold", "elephant", "fandisk_crack", "teapot"}
 # `joint_turn_move()`: anchor 0.24 / 0.69 -> 0.24 / 0.55, strict and within the tolerance)
 # (curve and corner vertices released into the volume to untangle cells go back to their curve,
 # not only to the surface: fandisk 0.66 / 0.85 -> 0.66 / 0.64)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.6), "anchor_dupflip": (0.3, 0.6), "t20_part": (0.75, 0.8),
-                          "fandisk": (0.75, 0.7), "cube": (0.05, 0.05)}
+# (a feature path pays for a vertex on another curve of one of its corners, `shortest_path()`:
+# fandisk 0.66 / 0.64 -> 0.66 / 0.47, all 35 curves captured; anchor 0.24 / 0.55 -> 0.26 / 0.48)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.55), "anchor_dupflip": (0.3, 0.55), "t20_part": (0.75, 0.8),
+                          "fandisk": (0.75, 0.55), "cube": (0.05, 0.05)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases; 0.66 / 0.85 with its
@@ -258,9 +260,9 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.6), "anchor_dupflip": (0.3, 0.6), "t
 # (with the turns pulled: anchor 0.24 / 0.69, t20_part 0.35 / 0.75, fandisk 0.28 / 0.85; with the
 # vertices that would flatten a face pulled too, t20_part 0.35 / 0.63; the joint turn moves:
 # anchor 0.24 / 0.55, t20_part 0.35 / 0.56; released curve vertices back on their curve: fandisk
-# 0.27 / 0.64)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.3, 0.6), "anchor_dupflip": (0.3, 0.6), "t20_part": (0.4, 0.7),
-                                   "fandisk": (0.35, 0.7), "cube": (0.05, 0.05)}
+# 0.27 / 0.64; paths paying for another curve's vertices: fandisk 0.27 / 0.47, anchor 0.26 / 0.48)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.3, 0.55), "anchor_dupflip": (0.3, 0.55), "t20_part": (0.4, 0.7),
+                                   "fandisk": (0.35, 0.55), "cube": (0.05, 0.05)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)

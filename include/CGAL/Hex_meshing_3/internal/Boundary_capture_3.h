@@ -1023,6 +1023,11 @@ private:
       i = j;
     }
     curve_trees.clear();
+    all_curves_tree.reset();
+    all_curve_segments.clear();
+    segment_curve.clear();
+    curve_ends.clear();
+    for(const auto& cv : curves) curve_ends.push_back(cv.closed ? std::make_pair(-1, -1) : std::make_pair(cv.c0, cv.c1));
     curve_of.assign(P.size(), -1);
     cnbrs.assign(P.size());
     curve_segments.assign(curves.size(), {});
@@ -1033,6 +1038,12 @@ private:
       if(cv.closed && cv.pts.size() > 2) sg.emplace_back(Point_3(cv.pts.back()[0], cv.pts.back()[1], cv.pts.back()[2]), Point_3(cv.pts[0][0], cv.pts[0][1], cv.pts[0][2]));
       curve_trees.push_back(sg.empty() ? nullptr : std::make_unique<Segment_tree>(sg.begin(), sg.end()));
       if(curve_trees.back()) curve_trees.back()->accelerate_distance_queries();
+      all_curve_segments.insert(all_curve_segments.end(), sg.begin(), sg.end());
+      segment_curve.insert(segment_curve.end(), sg.size(), int(c));
+    }
+    if(!all_curve_segments.empty()) {
+      all_curves_tree = std::make_unique<Segment_tree>(all_curve_segments.cbegin(), all_curve_segments.cend());
+      all_curves_tree->accelerate_distance_queries();
     }
     // outer-surface vertices that may carry a feature: surface twins (not hanging, not caps)
     std::vector<Index> outer;
@@ -1763,6 +1774,23 @@ private:
         double penalty = 0;
         if(w != to)
           for(const Vec3& n : fnormals[w]) if(dot(sub(cp, P[inner_of[w]]), n) <= 0) penalty = 10;
+        // a vertex that lies on another curve leaving a corner of this one (within 0.2 local
+        // sizes of it, and less than a quarter as far from it as from this one) is that curve's:
+        // taken only at a price (fandisk: the chain of its top edge reached the corner at x =
+        // -0.46 over the first vertex of the end face's edge, which then found no path and was
+        // missed; without the shared corner, or at half a local size, teapot's coarse facets
+        // lost faces to it)
+        if(w != to && penalty == 0 && all_curves_tree && dw > 0) {
+          const auto op = all_curves_tree->closest_point_and_primitive(point(P[w]));
+          const int other = segment_curve[std::size_t(op.second - all_curve_segments.cbegin())];
+          const double dother = norm(sub(vec(op.first), P[w]));
+          const auto& a = curve_ends[std::size_t(curve)];
+          const auto& b = curve_ends[std::size_t(other)];
+          auto meet = [](int x, int y) { return x >= 0 && x == y; };
+          const bool share = other != curve && (meet(a.first, b.first) || meet(a.first, b.second) ||
+                                                meet(a.second, b.first) || meet(a.second, b.second));
+          if(share && dother < 0.2 * hloc[w] && dother < 0.25 * dw) penalty = 10;
+        }
         const double l = norm(sub(P[w], P[v]));
         const double cost = dv + l * (1 + penalty + turn + opt.snap_weight * (dvc + dw) / hloc[w]);
         auto it = dist.find(w);
@@ -3543,6 +3571,7 @@ private:
   {
     auto drop = [](auto& x) { std::decay_t<decltype(x)>().swap(x); };
     drop(region_trees); drop(region_triangles); drop(curve_trees); drop(curve_segments);
+    all_curves_tree.reset(); drop(all_curve_segments); drop(segment_curve); drop(curve_ends);
     drop(nbrs); drop(snbrs); drop(cnbrs); drop(deps); drop(vertex_top_faces); drop(fnormals);
     drop(hang_masters); drop(hang_of); drop(cstart); drop(cinc); drop(hint); drop(hint_region);
     drop(quality_cache); drop(quality_at); drop(moved_at); for(auto& f : failed_at) drop(f);
@@ -3719,6 +3748,10 @@ private:
   std::vector<std::uint32_t> loose_of;    // ... each vertex's entry in `loose` (NO_LOOSE: none; empty outside the polish)
   std::vector<std::vector<Segment_3>> curve_segments;
   std::vector<std::unique_ptr<Segment_tree>> curve_trees;
+  std::vector<Segment_3> all_curve_segments;           // every curve's segments, curve by curve ...
+  std::vector<int> segment_curve;                      // ... the curve of each
+  std::unique_ptr<Segment_tree> all_curves_tree;       // ... and their tree (`shortest_path()`)
+  std::vector<std::pair<int, int>> curve_ends;         // each curve's end corners (-1: none, closed)
   std::vector<int> curve_of;
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::vector<int> turn_curve;        // ... the curve of each
