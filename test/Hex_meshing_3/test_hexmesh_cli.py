@@ -415,6 +415,21 @@ def main():
               abs(float(m.group(4)) - fi["mesh_to_input_max"] / s_) <= 0.01 * fi["mesh_to_input_max"] / s_ and
               abs(float(m.group(6)) - fi["input_to_mesh_max"] / s_) <= 0.01 * fi["input_to_mesh_max"] / s_,
               f"the fidelity line agrees with the report: {m.group(0)}")
+    # and, with a report, a line on the feature curves (bunny's 30-degree creases), its figures the report's
+    mf = re.search(r"^features\s+(\d+) input feature edges within (\S+) surface sizes of the mesh's \(.*\), (\d+) mesh feature "
+                   r"edges within (\S+) of the input's \(.*\); within \S+ degrees: (\S+) and (\S+); (\d+) corners within (\S+)$",
+                   r.stdout, re.M)
+    check(r.returncode == 0 and mf is not None, f"the summary has a features line ({r.stdout[-600:]!r})")
+    if mf:
+        rep = json.load(open(os.path.join(d, "r.json")))
+        ff, s_ = rep["feature_fidelity"], rep["fidelity"]["surface_size"]
+        close = lambda txt, v: v is not None and abs(float(txt) - v / s_) <= 0.01 * v / s_ + 1e-12
+        check(ff["input_feature_edges"] > 0 and int(mf.group(1)) == ff["input_feature_edges"] and
+              int(mf.group(3)) == ff["mesh_feature_edges"] and int(mf.group(7)) == ff["corners"] and
+              close(mf.group(2), ff["input_to_mesh"]) and close(mf.group(4), ff["mesh_to_input"]) and
+              close(mf.group(5), ff["within_tolerance"]["input_to_mesh"]) and
+              close(mf.group(6), ff["within_tolerance"]["mesh_to_input"]) and close(mf.group(8), ff["max_corner_distance"]),
+              f"the features line agrees with the report: {mf.group(0)}")
     # the warning's suggestion, followed, meshes bunny's ears: no warning, the input within the
     # surface size of the mesh (0.25 s at 6 cells down to s/8; 13.3 s at the default sizes)
     w = re.search(r"warning: parts of the input are up to \S+ surface sizes .*--thin-cells 6 --thin-size (\S+) meshes it", r.stderr)

@@ -699,6 +699,10 @@ int main(int argc, char** argv)
     // so that a part of the input lost or capped is said even without a report
     HM::Boundary_fidelity fid;
     bool have_fid = false;
+    // the feature curves' fidelity, measured for a report (the summary then says it too)
+    HM::Feature_fidelity feature_fid, feature_fid_tolerant;
+    bool have_feature_fid = false;
+    double feature_tolerance = 0;
     // its faces farther than r surface sizes from the input
     auto faces_beyond = [&](double r) {
       return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
@@ -809,6 +813,10 @@ int main(int argc, char** argv)
           const HM::Feature_curves_3<K> loose(domain, lopt);
           const HM::Feature_fidelity ft =
               HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, tolerance, ff.sample_spacing);
+          feature_fid = ff;
+          feature_fid_tolerant = ft;
+          feature_tolerance = tolerance;
+          have_feature_fid = true;
           j["feature_fidelity"]["within_tolerance"] = {
               {"tolerance_degrees", tolerance},
               {"input_to_mesh", finite(ft.input_to_mesh)}, {"input_to_mesh_worst_at", loc(ft.worst_input_location)},
@@ -924,6 +932,22 @@ int main(int argc, char** argv)
                     "the mesh (the farthest at %s)\n",
                     fid.surface_faces, fid.cap_faces, far, fid.max_face_distance / surface_size, at(fid.worst_face_location).c_str(),
                     fid.samples, fid.max_sample_distance / surface_size, at(fid.worst_sample_location).c_str());
+      // the feature curves, both ways (with a report: it measures them)
+      if(!quiet && have_feature_fid && (feature_fid.input_feature_edges > 0 || feature_fid.mesh_feature_edges > 0)) {
+        auto sizes = [&](double d) {
+          char b[32];
+          if(std::isfinite(d)) std::snprintf(b, sizeof b, "%.3g", d / surface_size);
+          else std::snprintf(b, sizeof b, "inf");
+          return std::string(b);
+        };
+        std::printf("features           %zu input feature edges within %s surface sizes of the mesh's (the farthest at %s), "
+                    "%zu mesh feature edges within %s of the input's (the farthest at %s); within %g degrees: %s and %s; "
+                    "%zu corners within %s\n",
+                    feature_fid.input_feature_edges, sizes(feature_fid.input_to_mesh).c_str(), at(feature_fid.worst_input_location).c_str(),
+                    feature_fid.mesh_feature_edges, sizes(feature_fid.mesh_to_input).c_str(), at(feature_fid.worst_mesh_location).c_str(),
+                    feature_tolerance, sizes(feature_fid_tolerant.input_to_mesh).c_str(), sizes(feature_fid_tolerant.mesh_to_input).c_str(),
+                    feature_fid.corners, sizes(feature_fid.max_corner_distance).c_str());
+      }
       // a part of the input the body-fitted mesh does not cover: said even with --quiet (a staircase
       // stands up to a cell's half diagonal off by design)
       if(!staircase && fid.samples > 0 && fid.max_sample_distance > surface_size) {
