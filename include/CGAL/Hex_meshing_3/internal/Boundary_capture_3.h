@@ -1045,6 +1045,7 @@ private:
       all_curves_tree = std::make_unique<Segment_tree>(all_curve_segments.cbegin(), all_curve_segments.cend());
       all_curves_tree->accelerate_distance_queries();
     }
+    nearest_curve.assign(P.size(), {NOT_YET, 0.0});
     // outer-surface vertices that may carry a feature: surface twins (not hanging, not caps)
     std::vector<Index> outer;
     for(Index v : inner) if(kind[twin[v]] == SURFACE) outer.push_back(twin[v]);
@@ -1781,9 +1782,15 @@ private:
         // missed; without the shared corner, or at half a local size, teapot's coarse facets
         // lost faces to it)
         if(w != to && penalty == 0 && all_curves_tree && dw > 0) {
-          const auto op = all_curves_tree->closest_point_and_primitive(point(P[w]));
-          const int other = segment_curve[std::size_t(op.second - all_curve_segments.cbegin())];
-          const double dother = norm(sub(vec(op.first), P[w]));
+          // (the curve nearest to w does not depend on the path's curve: asked once per vertex,
+          // the vertices do not move while the paths are searched)
+          auto& near = nearest_curve[w];
+          if(near.first == NOT_YET) {
+            const auto op = all_curves_tree->closest_point_and_primitive(point(P[w]));
+            near = {segment_curve[std::size_t(op.second - all_curve_segments.cbegin())], norm(sub(vec(op.first), P[w]))};
+          }
+          const int other = near.first;
+          const double dother = near.second;
           const auto& a = curve_ends[std::size_t(curve)];
           const auto& b = curve_ends[std::size_t(other)];
           auto meet = [](int x, int y) { return x >= 0 && x == y; };
@@ -3571,7 +3578,7 @@ private:
   {
     auto drop = [](auto& x) { std::decay_t<decltype(x)>().swap(x); };
     drop(region_trees); drop(region_triangles); drop(curve_trees); drop(curve_segments);
-    all_curves_tree.reset(); drop(all_curve_segments); drop(segment_curve); drop(curve_ends);
+    all_curves_tree.reset(); drop(all_curve_segments); drop(segment_curve); drop(curve_ends); drop(nearest_curve);
     drop(nbrs); drop(snbrs); drop(cnbrs); drop(deps); drop(vertex_top_faces); drop(fnormals);
     drop(hang_masters); drop(hang_of); drop(cstart); drop(cinc); drop(hint); drop(hint_region);
     drop(quality_cache); drop(quality_at); drop(moved_at); for(auto& f : failed_at) drop(f);
@@ -3752,6 +3759,8 @@ private:
   std::vector<int> segment_curve;                      // ... the curve of each
   std::unique_ptr<Segment_tree> all_curves_tree;       // ... and their tree (`shortest_path()`)
   std::vector<std::pair<int, int>> curve_ends;         // each curve's end corners (-1: none, closed)
+  static constexpr int NOT_YET = -2;
+  std::vector<std::pair<int, double>> nearest_curve;   // per vertex, the curve nearest to it and its distance (NOT_YET: not asked)
   std::vector<int> curve_of;
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::vector<int> turn_curve;        // ... the curve of each
