@@ -45,6 +45,7 @@
 #include <iostream>
 #include <regex>
 #include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -699,10 +700,10 @@ int main(int argc, char** argv)
     // so that a part of the input lost or capped is said even without a report
     HM::Boundary_fidelity fid;
     bool have_fid = false;
-    // the feature curves' fidelity, measured for a report (the summary then says it too)
-    HM::Feature_fidelity feature_fid, feature_fid_tolerant;
-    bool have_feature_fid = false;
-    double feature_tolerance = 0;
+    // the feature curves' fidelity, strict and within the angle tolerance, measured for a report
+    // (the summary then says it too)
+    const double feature_tolerance = (std::min)(10.0, feature_angle / 2);
+    std::optional<std::pair<HM::Feature_fidelity, HM::Feature_fidelity>> feature_fids;
     // its faces farther than r surface sizes from the input
     auto faces_beyond = [&](double r) {
       return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
@@ -805,7 +806,7 @@ int main(int argc, char** argv)
         // less (all the input's edges there, unfiltered), so that a crease near the angle is not
         // counted as missed or invented for lying on the other side of it
         {
-          const double tolerance = (std::min)(10.0, feature_angle / 2);
+          const double tolerance = feature_tolerance;
           HM::Feature_curves_3<K>::Options lopt = fopt;
           lopt.feature_angle = feature_angle - tolerance;
           lopt.scale = 0;
@@ -813,10 +814,7 @@ int main(int argc, char** argv)
           const HM::Feature_curves_3<K> loose(domain, lopt);
           const HM::Feature_fidelity ft =
               HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, tolerance, ff.sample_spacing);
-          feature_fid = ff;
-          feature_fid_tolerant = ft;
-          feature_tolerance = tolerance;
-          have_feature_fid = true;
+          feature_fids.emplace(ff, ft);
           j["feature_fidelity"]["within_tolerance"] = {
               {"tolerance_degrees", tolerance},
               {"input_to_mesh", finite(ft.input_to_mesh)}, {"input_to_mesh_worst_at", loc(ft.worst_input_location)},
@@ -933,7 +931,9 @@ int main(int argc, char** argv)
                     fid.surface_faces, fid.cap_faces, far, fid.max_face_distance / surface_size, at(fid.worst_face_location).c_str(),
                     fid.samples, fid.max_sample_distance / surface_size, at(fid.worst_sample_location).c_str());
       // the feature curves, both ways (with a report: it measures them)
-      if(!quiet && have_feature_fid && (feature_fid.input_feature_edges > 0 || feature_fid.mesh_feature_edges > 0)) {
+      if(!quiet && feature_fids && (feature_fids->first.input_feature_edges > 0 || feature_fids->first.mesh_feature_edges > 0)) {
+        const HM::Feature_fidelity& strict = feature_fids->first;
+        const HM::Feature_fidelity& tolerant = feature_fids->second;
         auto sizes = [&](double d) {
           char b[32];
           if(std::isfinite(d)) std::snprintf(b, sizeof b, "%.3g", d / surface_size);
@@ -943,10 +943,10 @@ int main(int argc, char** argv)
         std::printf("features           %zu input feature edges within %s surface sizes of the mesh's (the farthest at %s), "
                     "%zu mesh feature edges within %s of the input's (the farthest at %s); within %g degrees: %s and %s; "
                     "%zu corners within %s\n",
-                    feature_fid.input_feature_edges, sizes(feature_fid.input_to_mesh).c_str(), at(feature_fid.worst_input_location).c_str(),
-                    feature_fid.mesh_feature_edges, sizes(feature_fid.mesh_to_input).c_str(), at(feature_fid.worst_mesh_location).c_str(),
-                    feature_tolerance, sizes(feature_fid_tolerant.input_to_mesh).c_str(), sizes(feature_fid_tolerant.mesh_to_input).c_str(),
-                    feature_fid.corners, sizes(feature_fid.max_corner_distance).c_str());
+                    strict.input_feature_edges, sizes(strict.input_to_mesh).c_str(), at(strict.worst_input_location).c_str(),
+                    strict.mesh_feature_edges, sizes(strict.mesh_to_input).c_str(), at(strict.worst_mesh_location).c_str(),
+                    feature_tolerance, sizes(tolerant.input_to_mesh).c_str(), sizes(tolerant.mesh_to_input).c_str(),
+                    strict.corners, sizes(strict.max_corner_distance).c_str());
       }
       // a part of the input the body-fitted mesh does not cover: said even with --quiet (a staircase
       // stands up to a cell's half diagonal off by design)
