@@ -126,7 +126,7 @@ struct Meshing_statistics
   std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
   std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
   std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface, or released into the volume, to untangle cells (they are brought back towards their feature afterwards, as far as their cells allow)
-  std::size_t face_split_repairs = 0;       ///< vertex moves of the last repair, of faces none of whose diagonal splits was valid for OpenFOAM
+  std::size_t face_split_repairs = 0;       ///< vertex moves of the repairs of faces none of whose diagonal splits was valid for OpenFOAM (the face-split repair and the unfolding after the repairs and after the polish)
   std::size_t non_orthogonality_repairs = 0;   ///< vertex moves that lowered the non-orthogonality of faces beyond 50 degrees
   std::size_t polish_moves = 0;   ///< vertex moves of the final polish that raised the worst cells (below 0.35)
   std::size_t fidelity_moves = 0; ///< vertex moves after the polish (within its guards) that lowered by 2 % the largest distance to the surface of the centres of the vertex's boundary faces (relative to their local sizes; the faces of the hanging nodes it moves included), where it was beyond 0.2 (other faces of the vertex may get farther, not beyond that largest)
