@@ -2970,13 +2970,30 @@ private:
     const double floor_before = sj_floor;
     sj_floor = (std::max)(0.25, sj_min);
     use_folds = true;
-    std::vector<Vec3> centre(m.hexahedra.size());   // (once per selection)
-    std::size_t moves = 0;
-    moves += repair_sweeps([&](std::vector<char>& chosen) {
-      for(Index c = 0; c < m.hexahedra.size(); ++c) { Vec3 x[8]; corners(c, x); centre[c] = foam_hex_centre(x); }
-      for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = cell_fold(c, &centre) < opt.min_fold;
+    // each cell's score: all of them at the first selection (the centres computed once), then
+    // again only those of the cells the last sweep's moves touched (`swept_cells`) and of the
+    // cells across their faces (whose score takes their centres): the same values as a full count
+    std::vector<double> fold(m.hexahedra.size());
+    bool first = true;
+    std::vector<Index> todo;
+    rep.face_split_repairs += repair_sweeps([&](std::vector<char>& chosen) {
+      if(first) {
+        std::vector<Vec3> centre(m.hexahedra.size());
+        for(Index c = 0; c < m.hexahedra.size(); ++c) { Vec3 x[8]; corners(c, x); centre[c] = foam_hex_centre(x); }
+        for(Index c = 0; c < m.hexahedra.size(); ++c) fold[c] = cell_fold(c, &centre);
+        first = false;
+      } else {
+        todo.clear();
+        for(Index c : swept_cells) {
+          todo.push_back(c);
+          for(Index d : face_neighbour[c]) if(d != NONE) todo.push_back(d);
+        }
+        std::sort(todo.begin(), todo.end());
+        todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+        for(Index c : todo) fold[c] = cell_fold(c);
+      }
+      for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = fold[c] < opt.min_fold;
     }, opt.face_split_passes);
-    rep.face_split_repairs += moves;
     use_folds = false;
     sj_floor = floor_before;
   }
