@@ -806,17 +806,16 @@ int main(int argc, char** argv)
         // less (all the input's edges there, unfiltered), so that a crease near the angle is not
         // counted as missed or invented for lying on the other side of it
         {
-          const double tolerance = feature_tolerance;
           HM::Feature_curves_3<K>::Options lopt = fopt;
-          lopt.feature_angle = feature_angle - tolerance;
+          lopt.feature_angle = feature_angle - feature_tolerance;
           lopt.scale = 0;
           lopt.contrast = 0;
           const HM::Feature_curves_3<K> loose(domain, lopt);
           const HM::Feature_fidelity ft =
-              HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, tolerance, ff.sample_spacing);
+              HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, feature_tolerance, ff.sample_spacing);
           feature_fids.emplace(ff, ft);
           j["feature_fidelity"]["within_tolerance"] = {
-              {"tolerance_degrees", tolerance},
+              {"tolerance_degrees", feature_tolerance},
               {"input_to_mesh", finite(ft.input_to_mesh)}, {"input_to_mesh_worst_at", loc(ft.worst_input_location)},
               {"mesh_to_input", finite(ft.mesh_to_input)}, {"mesh_to_input_worst_at", loc(ft.worst_mesh_location)}};
         }

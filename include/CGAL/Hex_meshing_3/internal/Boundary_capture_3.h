@@ -186,6 +186,23 @@ inline double hex_face_split_quality(const Vec3* x)
   return min_of(v, 24);
 }
 
+// OpenFOAM's tet decomposition of a face needs a diagonal split whose corner tetrahedra are
+// positive with the centres of both its cells: the better diagonal of the quad q[0..3] (in the
+// order of the cell whose centre is `cc`), scored by the worse of its corners' qualities with
+// `cc` and, if `cd` is given, with the centre of the cell across
+inline double face_shared_split(const Vec3* q, const Vec3& cc, const Vec3* cd)
+{
+  double corner[4];
+  for(int i = 0; i < 4; ++i) {
+    const Vec3& p = q[i];
+    const Vec3& next = q[(i + 1) % 4];
+    const Vec3& prev = q[(i + 3) % 4];
+    corner[i] = face_corner_quality(p, next, prev, cc);
+    if(cd) corner[i] = (std::min)(corner[i], face_corner_quality(p, prev, next, *cd));
+  }
+  return (std::max)((std::min)(corner[1], corner[3]), (std::min)(corner[0], corner[2]));
+}
+
 // `g` (n vectors) becomes minus the direction d closest to -g with a_k . d >= 0 for the `m` rows
 // a_k of `ga` (each n vectors, row by row), so that a step along -g lowers none of the
 // constrained values at first order. d = -g + sum_k lambda_k a_k with lambda >= 0 minimising
@@ -2145,12 +2162,13 @@ private:
     // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
     double nonortho_cap = 0;
     const bool guard_sj = use_face_splits || use_folds || use_split_warp || use_non_orthogonality || use_polish;
+    const bool guard_split = use_polish || use_non_orthogonality;
     if(guard_sj) {
       for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_sj(cells[i]);
       // and no face split may get worse below the repair's threshold (in the non-orthogonality
       // repair too: unguarded, it folded a face of two grid cells on the motorBike, split
       // 0.04 -> -0.05, a face failing OpenFOAM's tet decomposition that the cleanup cannot remove)
-      if(use_polish || use_non_orthogonality) {
+      if(guard_split) {
         split_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) split_old[i] = cell_split(cells[i]);
         if(second_polish) { conc_old.resize(cells.size()); for(std::size_t i = 0; i < cells.size(); ++i) conc_old[i] = cell_concave(cells[i]); }
@@ -2179,7 +2197,7 @@ private:
         double sj = 1;
         const double q = cell_quality_above(cells[i], floor, guard_sj ? &sj : nullptr);
         const bool fails = q < floor || (guard_sj && sj < (std::min)(base_old[i], sj_floor)) ||
-                           ((use_polish || use_non_orthogonality) && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) ||
+                           (guard_split && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) ||
                            (use_polish && second_polish && !conc_old[i] && cell_concave(cells[i]));
         if(fails) { fail_first(k); return; }
         trial_q[i] = q;
@@ -2921,15 +2939,9 @@ private:
       const Vec3 cc = centre[c], cd = d == NONE ? cc : centre[d];
       const auto& f = hex_local_faces()[std::size_t(fi)];
       const auto& H = m.hexahedra[c];
-      double corner[4];
-      for(int i = 0; i < 4; ++i) {
-        const Vec3& p = P[H[std::size_t(f[std::size_t(i)])]];
-        const Vec3& next = P[H[std::size_t(f[std::size_t((i + 1) % 4)])]];
-        const Vec3& prev = P[H[std::size_t(f[std::size_t((i + 3) % 4)])]];
-        corner[i] = face_corner_quality(p, next, prev, cc);
-        if(d != NONE) corner[i] = (std::min)(corner[i], face_corner_quality(p, prev, next, cd));
-      }
-      return (std::max)((std::min)(corner[1], corner[3]), (std::min)(corner[0], corner[2]));
+      Vec3 q[4];
+      for(int i = 0; i < 4; ++i) q[i] = P[H[std::size_t(f[std::size_t(i)])]];
+      return face_shared_split(q, cc, d == NONE ? nullptr : &cd);
     };
     use_face_splits = true;
     rep.face_split_repairs += repair_sweeps([&](std::vector<char>& chosen) {
@@ -3867,15 +3879,9 @@ private:
         else { corners(d, y); cd = foam_hex_centre(y); }
       }
       const auto& f = hex_local_faces()[std::size_t(fi)];
-      double corner[4];
-      for(int i = 0; i < 4; ++i) {
-        const Vec3& p = x[f[std::size_t(i)]];
-        const Vec3& next = x[f[std::size_t((i + 1) % 4)]];
-        const Vec3& prev = x[f[std::size_t((i + 3) % 4)]];
-        corner[i] = face_corner_quality(p, next, prev, cc);
-        if(d != NONE) corner[i] = (std::min)(corner[i], face_corner_quality(p, prev, next, cd));
-      }
-      worst = (std::min)(worst, (std::max)((std::min)(corner[1], corner[3]), (std::min)(corner[0], corner[2])));
+      Vec3 q[4];
+      for(int i = 0; i < 4; ++i) q[i] = x[f[std::size_t(i)]];
+      worst = (std::min)(worst, face_shared_split(q, cc, d == NONE ? nullptr : &cd));
     }
     return worst;
   }
