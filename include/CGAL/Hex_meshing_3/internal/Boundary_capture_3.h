@@ -2453,6 +2453,7 @@ private:
     for(Index v : released_list) todo.push_back({v, std::size_t(-1)});
     for(std::size_t i = 0; i < unsnapped_list.size(); ++i) todo.push_back({unsnapped_list[i].v, i});
     for(Index v : sheet_caps) todo.push_back({v, std::size_t(-1)});
+    std::vector<Stamp>& reattach_failed = failed_at[2];
     for(int round = 0; round < opt.reattach_rounds && !cancelled; ++round) {
       std::size_t moved = 0;
       for(const auto& td : todo) {
@@ -2471,6 +2472,9 @@ private:
           goal = l.kind;
           target = goal == CORNER ? l.where : clamp_planes(v, closest_on_curve(x0, curve_of[v]));
         } else continue;
+        // one that found no step, none of whose inputs (its place, the corners of its cells and
+        // their hanging nodes' masters) moved since, finds none again
+        if(reattach_failed[v] != 0 && last_input_move(v) <= reattach_failed[v]) continue;
         affected_cells(v, cells);
         q_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
@@ -2505,9 +2509,10 @@ private:
           ++moved;
           done = true;
           for(Index c : cells) if(cell_quality(c) < opt.target_quality) low.push_back(c);
+          stamp_move(v);
           break;
         }
-        if(!done) move(v, x0);
+        if(!done) { move(v, x0); reattach_failed[v] = clock; }
       }
       std::sort(low.begin(), low.end());
       low.erase(std::unique(low.begin(), low.end()), low.end());
@@ -2817,6 +2822,26 @@ private:
     use_polish = true;
     Move_guard guard;
     std::vector<Vec3> steps;
+    // A vertex whose steps failed, none of whose inputs moved since, fails again: its inputs are
+    // what `improve()` reads at it and at the corners of its cells (the masters of hanging ones),
+    // which covers the guards and the joint move. Every move kept here is stamped.
+    CGAL_assertion(moved_at.size() == P.size());
+    std::vector<Stamp>& turn_failed = failed_at[2];
+    turn_failed.assign(P.size(), 0);
+    std::vector<Index> around, near;
+    auto inputs_moved = [&](Index v) {
+      affected_cells(v, around);
+      near.clear();
+      near.push_back(v);
+      for(Index cell : around)
+        for(Index w : m.hexahedra[cell]) {
+          if(kind[w] == HANGING) { for(const auto& x : hang_masters[hang_of[w]]) near.push_back(x.first); }
+          else near.push_back(w);
+        }
+      Stamp t = 0;
+      for(Index w : near) t = (std::max)(t, last_input_move(w));
+      return t;
+    };
     for(int pass = 0; pass < opt.turn_passes && !cancelled; ++pass) {
       std::size_t moved = 0;
       for(std::size_t i = 0; i < turn_vertices.size(); ++i) {
@@ -2824,6 +2849,7 @@ private:
         const Index v = turn_vertices[i];
         const int c = turn_curve[i];
         if(kind[v] != SURFACE || c < 0 || (v < left_feature.size() && left_feature[v])) continue;
+        if(turn_failed[v] != 0 && inputs_moved(v) <= turn_failed[v]) continue;
         const Vec3 x0 = P[v];
         const Vec3 target = clamp_planes(v, closest_on_curve(x0, c));
         const double d0 = norm(sub(target, x0)), keep = opt.turn_distance * local_size(v);
@@ -2846,8 +2872,10 @@ private:
           if(top_face_offset(v) <= offset_cap && guard.passes(*this)) { done = true; break; }
         }
         if(!done) move(v, x0);
+        else stamp_move(v);
         if(!done && opt.turn_joint && !steps.empty()) done = joint_turn_move(v, x0, steps, offset_cap);
         if(done) ++moved;
+        else turn_failed[v] = clock;
       }
       rep.turn_moves += moved;
       if(moved == 0) break;
@@ -2895,7 +2923,11 @@ private:
       for(Index w : vs) improve(w, cells);
       bool ok = top_face_offset(v) <= (std::min)(offset_cap, (std::max)(v_offset, 0.5 * opt.fidelity_distance)) && g.passes(*this);
       for(std::size_t i = 0; ok && i < vs.size(); ++i) ok = top_face_offset(vs[i]) <= offset_caps[i];
-      if(ok) return true;
+      if(ok) {
+        stamp_move(v);
+        for(Index w : vs) stamp_move(w);
+        return true;
+      }
       for(std::size_t i = 0; i < vs.size(); ++i) move(vs[i], xs[i]);
       move(v, x0);
     }
@@ -3743,7 +3775,9 @@ private:
   // they overflow)
   typedef std::uint32_t Stamp;
   std::vector<Stamp> moved_at;
-  std::array<std::vector<Stamp>, 2> failed_at;
+  // per vertex: when its last step failed in the sweeps (max-min, energy), and in the loop running
+  // apart from them (the steps back to the surface in optimise(), then the turn polish)
+  std::array<std::vector<Stamp>, 3> failed_at;
   Stamp clock = 1, epoch = 1;
   // optimise(): each cell's quality and when it was computed (valid in the epoch, if no corner
   // moved since)
