@@ -94,6 +94,16 @@ def mesh_case(args, name, extra, label):
     if r.returncode != 0:
         return None
     rep = json.load(open(report))
+    # the capture's timing: each step's parts ("step.part") take at most the step's time, in order
+    bd = rep.get("boundary")
+    if bd and "step_seconds" in bd:
+        steps, parts = bd["step_seconds"], bd.get("substep_seconds", {})
+        check("optimise.sweeps" in parts and all(v >= 0 for v in parts.values()),
+              f"the report times the capture's parts ({', '.join(parts)})")
+        for st, t in steps.items():
+            own = [v for k, v in parts.items() if k.split(".")[0] == st]
+            check(sum(own) <= t + 1e-6, f"the parts of step {st} take {sum(own):.4f} s of its {t:.4f} s")
+        check(all(k.split(".")[0] in steps for k in parts), "every part belongs to a step of the report")
     # the warning on parts of the input far from the mesh (said even with -q): exactly when the
     # report's input -> mesh distance exceeds the surface size, on a body-fitted mesh
     fi = rep.get("fidelity")

@@ -897,6 +897,9 @@ int main(int argc, char** argv)
           nlohmann::ordered_json cs = nlohmann::ordered_json::object();
           for(const auto& st : stats.capture_seconds) cs[st.first] = st.second;
           j["boundary"]["step_seconds"] = cs;
+          nlohmann::ordered_json ps = nlohmann::ordered_json::object();
+          for(const auto& st : stats.capture_substep_seconds) ps[st.first] = st.second;
+          j["boundary"]["substep_seconds"] = ps;
         }
         j["grid"] = {{"initial_cells", {stats.initial_cells[0], stats.initial_cells[1], stats.initial_cells[2]}},
                      {"leaf_cells", leaves}, {"cut_leaves", stats.cut_leaves}, {"balance_splits", stats.balance_splits},

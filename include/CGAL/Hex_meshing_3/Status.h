@@ -155,8 +155,16 @@ struct Meshing_statistics
   /// a point (the middle vertex) of each feature curve no chain was found for
   std::vector<std::array<double, 3>> missed_curves;
   /// wall seconds of each step of the boundary capture, in order (`"buffer"`, `"twins"`,
-  /// `"features"`, `"regions"`, `"optimise"`, `"repairs"`, `"cleanup"`)
+  /// `"features"`, `"regions"`, `"optimise"`, `"repairs"`, `"polish"`, `"cleanup"`)
   std::vector<std::pair<std::string, double>> capture_seconds;
+  /// wall seconds of the parts of the longer steps, in order, named `"step.part"`: the
+  /// optimisation's `"sweeps"`, `"untangle"` (the unsnapping and releases), `"final_sweeps"`,
+  /// `"reattach"` (the rounds back to the surface), `"joint_moves"`; the polish's `"sweeps"`,
+  /// `"patches"`, `"second_sweeps"`, `"second_patches"`, `"fidelity"`, `"turns"`, `"unfold"`; the
+  /// cleanup's `"removal"` (of the invalid buffer cells) and `"checks"` (the rounds checking the
+  /// faces and cells as OpenFOAM will). A part that did not run is missing; the parts of a step
+  /// sum to at most its time.
+  std::vector<std::pair<std::string, double>> capture_substep_seconds;
 };
 
 /*!

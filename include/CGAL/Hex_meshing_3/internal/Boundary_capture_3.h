@@ -497,8 +497,9 @@ public:
     auto lap = [&](const char* step) {
       const auto t = std::chrono::steady_clock::now();
       rep.capture_seconds.emplace_back(step, std::chrono::duration<double>(t - t0).count());
-      t0 = t;
+      t0 = sub_t0 = t;
     };
+    sub_t0 = t0;
     P.resize(m.points.size());
     for(std::size_t v = 0; v < P.size(); ++v) P[v] = vec(m.points[v]);
     // the mesh's points are freed while `P` holds them (`build_adjacency()`): if an exception
@@ -535,7 +536,9 @@ public:
     unfold_faces();
     lap("repairs");
     if(!cancelled) polish();   // not needed for validity: a cancellation skips it
+    substep("polish.sweeps");
     if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
+    substep("polish.patches");
     // The second polish: next to a stretched top face the face pyramids bind before the scaled
     // Jacobian (bunny: a cell at 0.246 whose inner vertices, moved together, reach 0.35 with no
     // pyramid below 0.2). The goals are on the scaled Jacobian and OpenFOAM needs the pyramids
@@ -546,12 +549,17 @@ public:
     if(!cancelled && opt.second_polish_pyramid_weight != 1) {
       second_polish = true;
       polish();
+      substep("polish.second_sweeps");
       if(!cancelled && opt.patch_iterations > 0) rep.polish_patches += polish_patches(visitor);
+      substep("polish.second_patches");
       second_polish = false;
     }
     if(!cancelled) fidelity_polish(visitor);
+    substep("polish.fidelity");
     if(!cancelled) turn_polish(visitor);
+    substep("polish.turns");
     if(!cancelled) unfold_faces();
+    substep("polish.unfold");
     lap("polish");
     assign_patches();
     release_work_data();
@@ -559,6 +567,7 @@ public:
     // motorBike) is rebuilt by the next query made of the domain
     d.release_search_tree();
     remove_invalid_buffer_cells({});
+    substep("cleanup.removal");
     m.points.resize(P.size());
     for(std::size_t v = 0; v < P.size(); ++v) m.points[v] = Point_3(P[v][0], P[v][1], P[v][2]);
     // OpenFOAM rejects faces skewed beyond 4: the buffer cells at such a face go too, and those at
@@ -633,6 +642,7 @@ public:
       remove_invalid_buffer_cells(extra);
     }
     if(rep.removed_buffer_cells > 0) drop_unused_vertices();
+    substep("cleanup.checks");
     lap("cleanup");
     return !cancelled;
   }
@@ -2380,6 +2390,7 @@ private:
       }
     };
     smooth(opt.passes, true);
+    substep("optimise.sweeps");
     auto untangle = [&]() {
       new_epoch();
       for(int pass = 0; pass < opt.passes; ++pass) {
@@ -2439,8 +2450,10 @@ private:
     }
     // the cells around released vertices were only untangled: smooth them (and whatever else is
     // still below the target) once more
+    substep("optimise.untangle");
     if(!any_released && unsnapped_list.empty() && sheet_caps.empty()) return;
     smooth(opt.final_passes, false);
+    substep("optimise.final_sweeps");
     // Fidelity before quality: vertices that lost their constraint go back as far as their cells
     // allow (none may fall below min(its quality, keep_quality)) - released vertices towards the
     // surface, unsnapped ones towards their curve or corner; one that reaches it takes its kind
@@ -2526,6 +2539,7 @@ private:
     // if every cell of theirs is then valid, at least min(its quality, `joint_quality`) and not
     // concave for OpenFOAM where it was not, else everything goes back. (At 0.2 the motorBike
     // got 198 more cells below 0.3, at 0.3 fandisk kept its far faces; see the manual.)
+    substep("optimise.reattach");
     if(opt.joint_passes > 0) {
       std::vector<Index> around, nb, all, cu;
       std::vector<std::pair<Index, Vec3>> saved;
@@ -2626,6 +2640,7 @@ private:
         if(kept == 0) break;
       }
     }
+    substep("optimise.joint_moves");
     for(Index v : released_list) if(kind[v] == RELEASED) rep.unreached_vertices.push_back(P[v]);
     for(const Lost& l : unsnapped_list) if(kind[l.v] != l.kind) rep.unsnapped_at.push_back(P[l.v]);
     CGAL_assertion(rep.unsnapped_at.size() == rep.unsnapped_vertices);
@@ -3773,6 +3788,14 @@ private:
   // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
   // (32 bits: these are at the capture's memory peak; `next_stamp()` starts them again before
   // they overflow)
+  // the wall seconds of a part of a step since the last part or step ended (`capture_substep_seconds`)
+  std::chrono::steady_clock::time_point sub_t0;
+  void substep(const char* name)
+  {
+    const auto t = std::chrono::steady_clock::now();
+    rep.capture_substep_seconds.emplace_back(name, std::chrono::duration<double>(t - sub_t0).count());
+    sub_t0 = t;
+  }
   typedef std::uint32_t Stamp;
   std::vector<Stamp> moved_at;
   // per vertex: when its last step failed in the sweeps (max-min, energy), and in the loop running
