@@ -165,6 +165,8 @@ def main():
         ours["fidelity"] = fidelity(case, "hexmesh", work, args.surface_distance, bike, args.samples)
         jr = json.load(open(rep))
         ours["report_seconds"] = jr.get("seconds", {})
+        ours["capture_step_seconds"] = jr.get("boundary", {}).get("step_seconds", {})
+        ours["capture_substep_seconds"] = jr.get("boundary", {}).get("substep_seconds", {})
         ours["box_contacts"] = jr.get("box_contacts", {})
     results["hexmesh"] = ours
 
@@ -235,6 +237,12 @@ def main():
             except (KeyError, TypeError):
                 cells.append("-")
         print(f"{label:36s}" + "".join(f"{c:>26s}" for c in cells))
+    # where our time goes (hexmesh's own report: its phases, and the boundary capture's steps)
+    o = results.get("hexmesh", {})
+    if o.get("report_seconds"):
+        print("hexmesh phases (s): " + ", ".join(f"{k} {v:.1f}" for k, v in o["report_seconds"].items()))
+    if o.get("capture_step_seconds"):
+        print("hexmesh capture steps (s): " + ", ".join(f"{k} {v:.1f}" for k, v in o["capture_step_seconds"].items()))
     if "snappyHexMesh" in results:
         s = results["snappyHexMesh"]
         print(f"snappy's blockMesh {s.get('blockMesh', {}).get('seconds')} s, surfaceFeatureExtract "
