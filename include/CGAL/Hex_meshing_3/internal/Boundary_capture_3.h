@@ -2843,17 +2843,10 @@ private:
     CGAL_assertion(moved_at.size() == P.size());
     std::vector<Stamp>& turn_failed = failed_at[2];
     turn_failed.assign(P.size(), 0);
-    std::vector<Index> around, near;
+    std::vector<Index> near;
     auto inputs_moved = [&](Index v) {
-      affected_cells(v, around);
-      near.clear();
-      near.push_back(v);
-      for(Index cell : around)
-        for(Index w : m.hexahedra[cell]) {
-          if(kind[w] == HANGING) { for(const auto& x : hang_masters[hang_of[w]]) near.push_back(x.first); }
-          else near.push_back(w);
-        }
-      Stamp t = 0;
+      cell_corner_masters(v, near);
+      Stamp t = last_input_move(v);
       for(Index w : near) t = (std::max)(t, last_input_move(w));
       return t;
     };
@@ -2912,12 +2905,7 @@ private:
   bool joint_turn_move(Index v, const Vec3& x0, const std::vector<Vec3>& steps, double offset_cap)
   {
     std::vector<Index> cells, vs;
-    affected_cells(v, cells);
-    for(Index cell : cells)
-      for(Index w : m.hexahedra[cell]) {
-        if(kind[w] == HANGING) { for(const auto& x : hang_masters[hang_of[w]]) vs.push_back(x.first); }
-        else vs.push_back(w);
-      }
+    cell_corner_masters(v, vs);
     std::sort(vs.begin(), vs.end());
     vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
     vs.erase(std::remove_if(vs.begin(), vs.end(), [&](Index w) { return w == v || !movable(w) || touches_skipped_top_face(w); }), vs.end());
@@ -3066,6 +3054,20 @@ private:
     }, opt.face_split_passes);
     use_folds = false;
     sj_floor = floor_before;
+  }
+
+  // the corners of the cells v moves (`affected_cells()`), a hanging one as its independent
+  // masters, with repeats (v among them)
+  void cell_corner_masters(Index v, std::vector<Index>& out) const
+  {
+    std::vector<Index> cells;
+    affected_cells(v, cells);
+    out.clear();
+    for(Index cell : cells)
+      for(Index w : m.hexahedra[cell]) {
+        if(kind[w] == HANGING) { for(const auto& x : hang_masters[hang_of[w]]) out.push_back(x.first); }
+        else out.push_back(w);
+      }
   }
 
   // a vertex to improve (the masters of a hanging one), once
@@ -3797,10 +3799,6 @@ private:
   // repair_sweeps(): the cells the moves of its last sweep touched (for its `select`)
   std::vector<Index> swept_cells;
   std::vector<std::pair<Index, double>> dep_weights;
-  // optimise(): when each vertex last moved in a sweep (a hanging node: when its master did), and
-  // when each last found no move, per kind of sweep (max-min, energy); a clock of moves
-  // (32 bits: these are at the capture's memory peak; `next_stamp()` starts them again before
-  // they overflow)
   // the wall seconds of a part of a step since the last part or step ended (`capture_substep_seconds`)
   std::chrono::steady_clock::time_point sub_t0;
   void substep(const char* name)
@@ -3809,6 +3807,9 @@ private:
     rep.capture_substep_seconds.emplace_back(name, std::chrono::duration<double>(t - sub_t0).count());
     sub_t0 = t;
   }
+  // optimise(): when each vertex last moved (a hanging node: when its master did), and when each
+  // last found no move (`failed_at`); a clock of moves (32 bits: these are at the capture's memory
+  // peak; `next_stamp()` starts them again before they overflow)
   typedef std::uint32_t Stamp;
   std::vector<Stamp> moved_at;
   // per vertex: when its last step failed in the sweeps (max-min, energy), and in the loop running
