@@ -233,8 +233,10 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # and fandisk_crack's (0.2) leave cells below 0.3 at their first capture
 # (fandisk's with its curved parts at s/2 is captured once, 0.349); since the unfolding of faces
 # (`unfold_faces()`, stop 48) elephant's and teapot's first captures have no face failing the tet
-# decomposition, and are kept (elephant 0.302, teapot 0.351)
-CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack"}
+# decomposition, and are kept (elephant 0.302, teapot 0.351); since the feature paths are searched
+# again with the curves left short first (no gap left at teapot's corners), teapot's first capture
+# leaves a cell below 0.3 again: the third is kept (0.328)
+CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack", "teapot"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
@@ -253,7 +255,9 @@ CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack"}
 # not only to the surface: fandisk 0.66 / 0.85 -> 0.66 / 0.64)
 # (a feature path pays for a vertex on another curve of one of its corners, `shortest_path()`:
 # fandisk 0.66 / 0.64 -> 0.66 / 0.47, all 35 curves captured; anchor 0.24 / 0.55 -> 0.26 / 0.48)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.55), "anchor_dupflip": (0.3, 0.55), "t20_part": (0.75, 0.8),
+# (the paths searched again with the curves left short of a corner first, `snap_features()`:
+# anchor 0.26 / 0.48 -> 0.24 / 0.42, no gap; its input->mesh guard is the goal, 0.25)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.25, 0.45), "anchor_dupflip": (0.25, 0.45), "t20_part": (0.75, 0.8),
                           "fandisk": (0.75, 0.55), "cube": (0.05, 0.05)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
@@ -262,8 +266,9 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.3, 0.55), "anchor_dupflip": (0.3, 0.55), 
 # (with the turns pulled: anchor 0.24 / 0.69, t20_part 0.35 / 0.75, fandisk 0.28 / 0.85; with the
 # vertices that would flatten a face pulled too, t20_part 0.35 / 0.63; the joint turn moves:
 # anchor 0.24 / 0.55, t20_part 0.35 / 0.56; released curve vertices back on their curve: fandisk
-# 0.27 / 0.64; paths paying for another curve's vertices: fandisk 0.27 / 0.47, anchor 0.26 / 0.48)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.3, 0.55), "anchor_dupflip": (0.3, 0.55), "t20_part": (0.4, 0.7),
+# 0.27 / 0.64; paths paying for another curve's vertices: fandisk 0.27 / 0.47, anchor 0.26 / 0.48;
+# the paths searched again: anchor 0.24 / 0.42)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.25, 0.45), "anchor_dupflip": (0.25, 0.45), "t20_part": (0.4, 0.7),
                                    "fandisk": (0.35, 0.55), "cube": (0.05, 0.05)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
@@ -921,11 +926,13 @@ def main():
             # with 5 cells across its thin parts (its ears) none of the four captures is free of
             # cells concave for OpenFOAM or at faces failing the tet decomposition: the one kept
             # (a retry) runs a fifth time, with the removal
-            # (at 12 smoothing sweeps: at the default 8 one capture is free of them). The retries'
+            # (at 6 smoothing sweeps: at the default 8 one capture is free of them; at 12, since the
+            # feature paths are searched again with the curves left short first, the first capture
+            # is kept, 2 cells removed). The retries'
             # budget of 100,000 cells allows three retries of its ~27,400 cells, not a fourth: no
             # staircase retry although the mesh kept has faces beyond s/4 (with the default budget
             # of 200,000 a staircase retry runs and its first capture is kept, 2 cells removed)
-            j5, case5 = once_run("thin5", ["--thin-cells", "5", "--smoothing-sweeps", "12", "--capture-retry-cells", "100000"])
+            j5, case5 = once_run("thin5", ["--thin-cells", "5", "--smoothing-sweeps", "6", "--capture-retry-cells", "100000"])
             b5, q5 = j5["boundary"], j5["quality"]
             ok5, flags5 = all_geometry_ok(case5)
             check(b5["capture_tries"] == 5 and b5["capture_choice"] > 0 and b5["foam_fault_cells"] > 0 and
@@ -945,6 +952,9 @@ def main():
             # (at 12 smoothing sweeps: at the default 8 the retries keep the first capture)
             # (every cell above 0.3 until the joint moves of released vertices, which may take a
             # neighbour's cell down to 0.25: 0.265 since)
+            # (since the feature paths are searched again with the curves left short first, the
+            # retries that avoid the fault are the staircase's: one capture each, 0.303, no cell
+            # removed)
             j1, _ = once_run("thin3", ["--thin-cells", "3", "--smoothing-sweeps", "12"])
             j0, case0 = once_run("thin3_once", ["--thin-cells", "3", "--capture-retry-cells", "0", "--no-feature-pillows",
                                                 "--smoothing-sweeps", "12"])
@@ -953,11 +963,12 @@ def main():
             c0, c1 = j0["quality"]["concave_cells"], j1["quality"]["concave_cells"]
             r0, r1 = j0["boundary"]["foam_fault_cells"], j1["boundary"]["foam_fault_cells"]
             check(once and r0 > 0 and sj0 >= 0.25 and c0 == 0 and j0["quality"]["face_tet_errors"] == 0 and
-                  j1["boundary"]["capture_tries"] > 1 and c1 == 0 and r1 == 0,
+                  (j1["boundary"]["capture_tries"] > 1 or j1["boundary"]["staircase_tries"] > 1) and c1 == 0 and r1 == 0,
                   f"{stem} --thin-cells 3: --capture-retry-cells 0 captures once ({j0['boundary']['capture_tries']}), "
                   f"minimum {sj0:.3f} (>= 0.25), and removes {r0} buffer cell(s) at OpenFOAM faults (> 0), leaving {c0} "
                   f"concave cells and {j0['quality']['face_tet_errors']} faces failing the tet decomposition; with the "
-                  f"retries ({j1['boundary']['capture_tries']} captures) {c1} concave, {r1} removed")
+                  f"retries ({j1['boundary']['capture_tries']} captures, {j1['boundary']['staircase_tries']} staircases) "
+                  f"{c1} concave, {r1} removed")
             ok0, flags0 = all_geometry_ok(case0)
             check(ok0, f"{stem} --thin-cells 3: once, with those cells removed: checkMesh -allGeometry: Mesh OK (flags: {flags0})")
         if stem == "anchor":

@@ -1153,9 +1153,24 @@ private:
     }
     // curves: shortest paths on the outer surface between their end vertices (all paths first:
     // whether a chain gets a pillow depends on the chains around it)
-    std::vector<char> used(P.size(), 0);
-    std::vector<std::pair<std::size_t, std::vector<Piece>>> captured;
-    for(std::size_t c = 0; c < curves.size(); ++c) {
+    // The search is greedy, curve after curve: a curve searched late can find its corner walled
+    // in by the paths of the curves searched before it (anchor: the three curves of a corner whose
+    // four edges all lead diagonally across faces, two of them taking the two edges the third
+    // needed). When a search leaves gaps or misses curves, it is run again with those curves
+    // first, and the better of the two kept (fewer missed curves, then fewer gaps).
+    struct Search {
+      std::vector<char> used;
+      std::vector<std::pair<std::size_t, std::vector<Piece>>> captured;
+      std::size_t missed = 0, gaps = 0;
+      std::vector<Vec3> missed_at;
+      std::vector<std::size_t> trouble;   // the curves missed or left with a gap
+    };
+    auto search = [&](const std::vector<std::size_t>& order) {
+    Search out;
+    std::vector<char>& used = out.used;
+    used.assign(P.size(), 0);
+    auto& captured = out.captured;
+    for(std::size_t c : order) {
       if(!follow[c]) continue;
       const auto& cv = curves[c];
       const std::vector<Vec3>& pts = cv.pts;
@@ -1177,7 +1192,7 @@ private:
         wv.push_back(v);
       }
       if(!ok || wv.size() < 2) {
-        ++rep.curves_missed; rep.missed_curves.push_back(pts[pts.size() / 2]); continue;
+        ++out.missed; out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
       }
       // arc length of the curve at its vertices
       std::vector<double> arc{0};
@@ -1230,13 +1245,36 @@ private:
       }
       if(!ok) {
         for(Index v : marked) used[v] = 0;
-        ++rep.curves_missed; rep.missed_curves.push_back(pts[pts.size() / 2]); continue;
+        ++out.missed; out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
       }
-      ++rep.curves_captured;
-      rep.curve_gaps += gaps;
+      out.gaps += gaps;
+      if(gaps > 0) out.trouble.push_back(c);
       for(const Piece& piece : pieces) for(Index v : piece.path) used[v] = 1;   // the ends too
       captured.push_back({c, std::move(pieces)});
     }
+    return out;
+    };
+    std::vector<std::size_t> order(curves.size());
+    for(std::size_t c = 0; c < curves.size(); ++c) order[c] = c;
+    Search found = search(order);
+    if(!found.trouble.empty()) {
+      std::vector<char> first(curves.size(), 0);
+      for(std::size_t c : found.trouble) first[c] = 1;
+      std::stable_partition(order.begin(), order.end(), [&](std::size_t c) { return first[c] != 0; });
+      Search again = search(order);
+      if(again.missed < found.missed || (again.missed == found.missed && again.gaps < found.gaps)) {
+        // the chains in curve order, as the first search has them
+        std::sort(again.captured.begin(), again.captured.end(),
+                  [](const auto& x, const auto& y) { return x.first < y.first; });
+        found = std::move(again);
+      }
+    }
+    std::vector<char>& used = found.used;
+    const auto& captured = found.captured;
+    rep.curves_captured += captured.size();
+    rep.curves_missed += found.missed;
+    rep.missed_curves.insert(rep.missed_curves.end(), found.missed_at.begin(), found.missed_at.end());
+    rep.curve_gaps += found.gaps;
     // the chains of convex sharp curves get a pillow (see `pillow_chains()`) where the chains
     // around them allow it
     std::vector<char> pillow(curves.size(), 0);
