@@ -827,13 +827,22 @@ def main():
     summary = summarise(rows, divisions)
     json.dump({"meta": meta, "runs": rows, "summary": summary, "robustness": robustness},
               open(os.path.join(args.work, "results.json"), "w"), indent=1)
-    plots(rows, args.work)
+    # the tables first: a missing plotting library costs the plots, not the run's results
     t_main, t_rob = tables(rows, summary, robustness, meta)
     print()
     print(t_main)
     print()
     print(t_rob)
     print(f"\nsuite: {len(rows)} runs in {elapsed:.0f} s ({args.jobs} jobs); results in {args.work}")
+    try:
+        import matplotlib  # noqa: F401  (Debian's python3-matplotlib, for /usr/bin/python3)
+    except ImportError:
+        print("suite: no plots: matplotlib is missing (apt-get install python3-matplotlib; then --reuse "
+              "redoes the tables and plots from these runs)", file=sys.stderr)
+        if args.publish:
+            sys.exit("suite: --publish needs the plots: nothing published")
+        return
+    plots(rows, args.work)
     if args.publish:
         publish(args, rows, summary, t_main, t_rob, meta)
 
