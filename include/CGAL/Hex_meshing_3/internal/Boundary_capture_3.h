@@ -1162,98 +1162,98 @@ private:
     struct Search {
       std::vector<char> used;
       std::vector<std::pair<std::size_t, std::vector<Piece>>> captured;
-      std::size_t missed = 0, gaps = 0;
-      std::vector<Vec3> missed_at;
+      std::size_t gaps = 0;
+      std::vector<Vec3> missed_at;        // the missed curves' middle points
       std::vector<std::size_t> trouble;   // the curves missed or left with a gap
     };
     auto search = [&](const std::vector<std::size_t>& order) {
-    Search out;
-    std::vector<char>& used = out.used;
-    used.assign(P.size(), 0);
-    auto& captured = out.captured;
-    for(std::size_t c : order) {
-      if(!follow[c]) continue;
-      const auto& cv = curves[c];
-      const std::vector<Vec3>& pts = cv.pts;
-      // waypoints: the ends (corners), plus, for closed curves, three points around the loop
-      std::vector<std::size_t> way;
-      if(cv.closed) { const std::size_t n = pts.size(); way = {0, n / 3, 2 * n / 3, 0}; }
-      else way = {0, pts.size() - 1};
-      std::vector<Index> wv;
-      bool ok = true;
-      for(std::size_t k = 0; k < way.size(); ++k) {
-        Index v = NONE;
-        if(!cv.closed) v = corner_vertex[std::size_t(k == 0 ? cv.c0 : cv.c1)];
-        else if(k + 1 == way.size()) v = wv.front();
-        else {
-          v = nearest(pts[way[k]], [&](Index u) { return kind[u] == SURFACE && !used[u]; });
-          if(v != NONE && norm(sub(P[v], pts[way[k]])) > 2 * hloc[v]) v = NONE;
+      Search out;
+      std::vector<char>& used = out.used;
+      used.assign(P.size(), 0);
+      auto& captured = out.captured;
+      for(std::size_t c : order) {
+        if(!follow[c]) continue;
+        const auto& cv = curves[c];
+        const std::vector<Vec3>& pts = cv.pts;
+        // waypoints: the ends (corners), plus, for closed curves, three points around the loop
+        std::vector<std::size_t> way;
+        if(cv.closed) { const std::size_t n = pts.size(); way = {0, n / 3, 2 * n / 3, 0}; }
+        else way = {0, pts.size() - 1};
+        std::vector<Index> wv;
+        bool ok = true;
+        for(std::size_t k = 0; k < way.size(); ++k) {
+          Index v = NONE;
+          if(!cv.closed) v = corner_vertex[std::size_t(k == 0 ? cv.c0 : cv.c1)];
+          else if(k + 1 == way.size()) v = wv.front();
+          else {
+            v = nearest(pts[way[k]], [&](Index u) { return kind[u] == SURFACE && !used[u]; });
+            if(v != NONE && norm(sub(P[v], pts[way[k]])) > 2 * hloc[v]) v = NONE;
+          }
+          if(v == NONE) { ok = false; break; }
+          wv.push_back(v);
         }
-        if(v == NONE) { ok = false; break; }
-        wv.push_back(v);
-      }
-      if(!ok || wv.size() < 2) {
-        ++out.missed; out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
-      }
-      // arc length of the curve at its vertices
-      std::vector<double> arc{0};
-      for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
-      // a path that never turns inside a face if there is one, else one that turns as little as
-      // it can; if none keeps within `curve_corridor` local sizes of the curve, one within
-      // `wide_curve_corridor` (fine cells at a thin or acute part leave the buffer's vertices
-      // several of their sizes short of a ridge: t20_part's two curved ridges were missed, and
-      // the mesh cut across them 0.37 surface sizes off)
-      auto find_path = [&](Index a, Index b) {
-        std::vector<Index> p = shortest_path(a, b, int(c), used, true, opt.curve_corridor);
-        if(p.empty()) p = shortest_path(a, b, int(c), used, false, opt.curve_corridor);
-        if(p.empty()) p = shortest_path(a, b, int(c), used, false, opt.wide_curve_corridor);
-        return p;
-      };
-      // a free surface vertex within one local size of the curve's point at arc length s
-      auto free_near = [&](double s) {
-        const Vec3 x = point_at(c, arc, s);
-        Index v = nearest(x, [&](Index u) { return kind[u] == SURFACE && !used[u]; });
-        if(v != NONE && norm(sub(P[v], x)) > hloc[v]) v = NONE;
-        return v;
-      };
-      std::vector<Piece> pieces;
-      std::vector<Index> marked;
-      std::size_t gaps = 0;
-      for(std::size_t k = 0; k + 1 < wv.size() && ok; ++k) {
-        double s0 = arc[way[k]], s1 = (k + 2 == wv.size() && cv.closed) ? arc.back() : arc[way[k + 1]];
-        std::vector<Index> p = find_path(wv[k], wv[k + 1]);
-        if(p.empty()) {
-          // an end walled in by the curves already followed (three or more meet at a corner that
-          // has few edges): the piece starts or ends 1.5 local sizes along the curve instead,
-          // leaving that much of the curve uncaptured
-          const double step = 1.5 * hloc[wv[k]];
-          if(s1 - s0 > 4 * step) {
-            const Index a2 = free_near(s0 + step), b2 = free_near(s1 - step);
-            const std::pair<Index, Index> tries[3] = {{a2, wv[k + 1]}, {wv[k], b2}, {a2, b2}};
-            for(const auto& t : tries) {
-              if(t.first == NONE || t.second == NONE || t.first == t.second) continue;
-              p = find_path(t.first, t.second);
-              if(p.empty()) continue;
-              if(t.first != wv[k]) { s0 += step; used[t.first] = 1; marked.push_back(t.first); ++gaps; }
-              if(t.second != wv[k + 1]) { s1 -= step; used[t.second] = 1; marked.push_back(t.second); ++gaps; }
-              break;
+        if(!ok || wv.size() < 2) {
+          out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
+        }
+        // arc length of the curve at its vertices
+        std::vector<double> arc{0};
+        for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
+        // a path that never turns inside a face if there is one, else one that turns as little as
+        // it can; if none keeps within `curve_corridor` local sizes of the curve, one within
+        // `wide_curve_corridor` (fine cells at a thin or acute part leave the buffer's vertices
+        // several of their sizes short of a ridge: t20_part's two curved ridges were missed, and
+        // the mesh cut across them 0.37 surface sizes off)
+        auto find_path = [&](Index a, Index b) {
+          std::vector<Index> p = shortest_path(a, b, int(c), used, true, opt.curve_corridor);
+          if(p.empty()) p = shortest_path(a, b, int(c), used, false, opt.curve_corridor);
+          if(p.empty()) p = shortest_path(a, b, int(c), used, false, opt.wide_curve_corridor);
+          return p;
+        };
+        // a free surface vertex within one local size of the curve's point at arc length s
+        auto free_near = [&](double s) {
+          const Vec3 x = point_at(c, arc, s);
+          Index v = nearest(x, [&](Index u) { return kind[u] == SURFACE && !used[u]; });
+          if(v != NONE && norm(sub(P[v], x)) > hloc[v]) v = NONE;
+          return v;
+        };
+        std::vector<Piece> pieces;
+        std::vector<Index> marked;
+        std::size_t gaps = 0;
+        for(std::size_t k = 0; k + 1 < wv.size() && ok; ++k) {
+          double s0 = arc[way[k]], s1 = (k + 2 == wv.size() && cv.closed) ? arc.back() : arc[way[k + 1]];
+          std::vector<Index> p = find_path(wv[k], wv[k + 1]);
+          if(p.empty()) {
+            // an end walled in by the curves already followed (three or more meet at a corner that
+            // has few edges): the piece starts or ends 1.5 local sizes along the curve instead,
+            // leaving that much of the curve uncaptured
+            const double step = 1.5 * hloc[wv[k]];
+            if(s1 - s0 > 4 * step) {
+              const Index a2 = free_near(s0 + step), b2 = free_near(s1 - step);
+              const std::pair<Index, Index> tries[3] = {{a2, wv[k + 1]}, {wv[k], b2}, {a2, b2}};
+              for(const auto& t : tries) {
+                if(t.first == NONE || t.second == NONE || t.first == t.second) continue;
+                p = find_path(t.first, t.second);
+                if(p.empty()) continue;
+                if(t.first != wv[k]) { s0 += step; used[t.first] = 1; marked.push_back(t.first); ++gaps; }
+                if(t.second != wv[k + 1]) { s1 -= step; used[t.second] = 1; marked.push_back(t.second); ++gaps; }
+                break;
+              }
             }
           }
+          if(p.empty()) { ok = false; break; }
+          for(std::size_t i = 1; i + 1 < p.size(); ++i) { used[p[i]] = 1; marked.push_back(p[i]); }
+          pieces.push_back({std::move(p), s0, s1});
         }
-        if(p.empty()) { ok = false; break; }
-        for(std::size_t i = 1; i + 1 < p.size(); ++i) { used[p[i]] = 1; marked.push_back(p[i]); }
-        pieces.push_back({std::move(p), s0, s1});
+        if(!ok) {
+          for(Index v : marked) used[v] = 0;
+          out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
+        }
+        out.gaps += gaps;
+        if(gaps > 0) out.trouble.push_back(c);
+        for(const Piece& piece : pieces) for(Index v : piece.path) used[v] = 1;   // the ends too
+        captured.push_back({c, std::move(pieces)});
       }
-      if(!ok) {
-        for(Index v : marked) used[v] = 0;
-        ++out.missed; out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
-      }
-      out.gaps += gaps;
-      if(gaps > 0) out.trouble.push_back(c);
-      for(const Piece& piece : pieces) for(Index v : piece.path) used[v] = 1;   // the ends too
-      captured.push_back({c, std::move(pieces)});
-    }
-    return out;
+      return out;
     };
     std::vector<std::size_t> order(curves.size());
     for(std::size_t c = 0; c < curves.size(); ++c) order[c] = c;
@@ -1263,7 +1263,8 @@ private:
       for(std::size_t c : found.trouble) first[c] = 1;
       std::stable_partition(order.begin(), order.end(), [&](std::size_t c) { return first[c] != 0; });
       Search again = search(order);
-      if(again.missed < found.missed || (again.missed == found.missed && again.gaps < found.gaps)) {
+      const std::size_t missed = found.missed_at.size(), missed_again = again.missed_at.size();
+      if(missed_again < missed || (missed_again == missed && again.gaps < found.gaps)) {
         // the chains in curve order, as the first search has them
         std::sort(again.captured.begin(), again.captured.end(),
                   [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -1273,7 +1274,7 @@ private:
     std::vector<char>& used = found.used;
     const auto& captured = found.captured;
     rep.curves_captured += captured.size();
-    rep.curves_missed += found.missed;
+    rep.curves_missed += found.missed_at.size();
     rep.missed_curves.insert(rep.missed_curves.end(), found.missed_at.begin(), found.missed_at.end());
     rep.curve_gaps += found.gaps;
     // the chains of convex sharp curves get a pillow (see `pillow_chains()`) where the chains
@@ -2892,9 +2893,9 @@ private:
     CGAL_assertion(moved_at.size() == P.size());
     std::vector<Stamp>& turn_failed = failed_at[2];
     turn_failed.assign(P.size(), 0);
-    std::vector<Index> near;
+    std::vector<Index> near, around;
     auto inputs_moved = [&](Index v) {
-      cell_corner_masters(v, near);
+      cell_corner_masters(v, near, around);
       Stamp t = last_input_move(v);
       for(Index w : near) t = (std::max)(t, last_input_move(w));
       return t;
@@ -2954,7 +2955,7 @@ private:
   bool joint_turn_move(Index v, const Vec3& x0, const std::vector<Vec3>& steps, double offset_cap)
   {
     std::vector<Index> cells, vs;
-    cell_corner_masters(v, vs);
+    cell_corner_masters(v, vs, cells);
     std::sort(vs.begin(), vs.end());
     vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
     vs.erase(std::remove_if(vs.begin(), vs.end(), [&](Index w) { return w == v || !movable(w) || touches_skipped_top_face(w); }), vs.end());
@@ -3105,11 +3106,10 @@ private:
     sj_floor = floor_before;
   }
 
-  // the corners of the cells v moves (`affected_cells()`), a hanging one as its independent
-  // masters, with repeats (v among them)
-  void cell_corner_masters(Index v, std::vector<Index>& out) const
+  // the corners of the cells v moves (`affected_cells()`, into `cells`), a hanging one as its
+  // independent masters, with repeats (v among them)
+  void cell_corner_masters(Index v, std::vector<Index>& out, std::vector<Index>& cells) const
   {
-    std::vector<Index> cells;
     affected_cells(v, cells);
     out.clear();
     for(Index cell : cells)
@@ -3749,8 +3749,8 @@ private:
   // Before the cleanup (which builds the polyhedral mesh and its OpenFOAM geometry): what the
   // optimisation and the repairs used is freed. The cleanup reads the positions, the cells and
   // `buffer_owner` only. (Since then the capture's memory peak is no longer the cleanup's: on the
-  // motorBike, 2026-12-06, it is in the face-split repair and the last unfolding, whose OpenFOAM
-  // cell centres, 9 MB, come on top of the work data; the cleanup stays 20 MB below.)
+  // motorBike, 2026-12-06, it comes in the repairs and the last unfolding, their transients on top
+  // of the work data, the regions' and curves' trees the largest part; the cleanup is well below.)
   void release_work_data()
   {
     auto drop = [](auto& x) { std::decay_t<decltype(x)>().swap(x); };
