@@ -187,13 +187,16 @@ NO_FACE_BEYOND_QUARTER_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cub
 # holes capped; at s, bunny's lost ear tips were 13 s from its mesh)
 INPUT_WITHIN_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "cylinder", "eight",
                                   "elephant", "fandisk", "fandisk_crack", "t20_part"}
-FIDELITY_MOVES = {"cylinder", "eight"}
+# (cylinder no longer since its rims get feature pillows: no face of it stands off; bunny instead)
+FIDELITY_MOVES = {"bunny", "eight"}
 # where that goal is not met yet: at most this many faces beyond it (regression guards a little
 # above the figures of 2026-12-04 at fb28a15: bunny 16, elephant 46, elephant-with-holes 38,
 # fandisk 6 (10 before the joint moves' second target and round), fandisk_crack 4, rotor 137,
 # teapot 75; the meshes change from commit to commit in ways that move a few faces either way;
 # since the staircase retries: bunny 15, elephant 42, elephant-with-holes 38, rotor 117, teapot 75;
-# bunny and elephant none since their thin parts get 6 cells across)
+# bunny and elephant none since their thin parts get 6 cells across; teapot 51 since the paths
+# are searched again, 82 since closed curves are pillowed further off: its mesh with the staircase
+# at 0.4 is kept, the others having a cell below 0.3; rotor 120)
 FAR_FACES_AT_MOST = {"elephant-with-holes": 44, "rotor": 130, "teapot": 85}
 # the files whose first mesh (staircase 0.4 cell sizes off the surface) had a face beyond 0.25 x
 # surface size, made again with the staircase at 0.25 then 0.2 (`Meshing_statistics::
@@ -235,8 +238,9 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # (`unfold_faces()`, stop 48) elephant's and teapot's first captures have no face failing the tet
 # decomposition, and are kept (elephant 0.302, teapot 0.351); since the feature paths are searched
 # again with the curves left short first (no gap left at teapot's corners), teapot's first capture
-# leaves a cell below 0.3 again: the third is kept (0.328)
-CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack", "teapot"}
+# leaves a cell below 0.3 again: the third is kept (0.328); since closed curves get pillows with
+# their chains up to 2.5 local sizes off (`choose_pillows()`), its first capture is kept (0.357)
+CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
@@ -257,8 +261,12 @@ CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack", "teapot"}
 # fandisk 0.66 / 0.64 -> 0.66 / 0.47, all 35 curves captured; anchor 0.24 / 0.55 -> 0.26 / 0.48)
 # (the paths searched again with the curves left short of a corner first, `snap_features()`:
 # anchor 0.26 / 0.48 -> 0.24 / 0.42, no gap; its input->mesh guard is the goal, 0.25)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.25, 0.45), "anchor_dupflip": (0.25, 0.45), "t20_part": (0.75, 0.8),
-                          "fandisk": (0.75, 0.55), "cube": (0.05, 0.05)}
+# (closed curves pillowed with their chains up to 2.5 local sizes off, `choose_pillows()`: cylinder
+# 0.37 / 0.74 -> 0.03 / 0.02, its rims no longer turn inside faces; anchor's eight hole rims
+# pillowed, its turns 220 -> 117, but the worst places, elsewhere, move: 0.24 / 0.42 -> 0.26 / 0.45,
+# the turn at the corner (0.36, -0.2, 0.16))
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.27, 0.47), "anchor_dupflip": (0.27, 0.47), "t20_part": (0.75, 0.8),
+                          "fandisk": (0.75, 0.55), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases; 0.66 / 0.85 with its
@@ -267,9 +275,10 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.25, 0.45), "anchor_dupflip": (0.25, 0.45)
 # vertices that would flatten a face pulled too, t20_part 0.35 / 0.63; the joint turn moves:
 # anchor 0.24 / 0.55, t20_part 0.35 / 0.56; released curve vertices back on their curve: fandisk
 # 0.27 / 0.64; paths paying for another curve's vertices: fandisk 0.27 / 0.47, anchor 0.26 / 0.48;
-# the paths searched again: anchor 0.24 / 0.42)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.25, 0.45), "anchor_dupflip": (0.25, 0.45), "t20_part": (0.4, 0.7),
-                                   "fandisk": (0.35, 0.55), "cube": (0.05, 0.05)}
+# the paths searched again: anchor 0.24 / 0.42; closed curves pillowed: anchor 0.26 / 0.45,
+# cylinder 0.03 / 0.02)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.27, 0.47), "anchor_dupflip": (0.27, 0.47), "t20_part": (0.4, 0.7),
+                                   "fandisk": (0.35, 0.55), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
