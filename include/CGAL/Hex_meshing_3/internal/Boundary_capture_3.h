@@ -61,6 +61,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <queue>
 #include <set>
 #include <type_traits>
@@ -1193,9 +1194,8 @@ private:
           if(v == NONE) { ok = false; break; }
           wv.push_back(v);
         }
-        if(!ok || wv.size() < 2) {
-          out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
-        }
+        auto miss = [&]() { out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); };
+        if(!ok || wv.size() < 2) { miss(); continue; }
         // arc length of the curve at its vertices
         std::vector<double> arc{0};
         for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
@@ -1247,7 +1247,8 @@ private:
         }
         if(!ok) {
           for(Index v : marked) used[v] = 0;
-          out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); continue;
+          miss();
+          continue;
         }
         out.gaps += gaps;
         if(gaps > 0) out.trouble.push_back(c);
@@ -1257,7 +1258,7 @@ private:
       return out;
     };
     std::vector<std::size_t> order(curves.size());
-    for(std::size_t c = 0; c < curves.size(); ++c) order[c] = c;
+    std::iota(order.begin(), order.end(), std::size_t(0));
     Search found = search(order);
     if(!found.trouble.empty()) {
       std::vector<char> first(curves.size(), 0);
