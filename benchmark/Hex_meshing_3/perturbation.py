@@ -6,9 +6,10 @@ test/Hex_meshing_3/test_dirty_input.py) as it is (shift 0) and translated by k x
 bounding-box diagonal along (1, 0.7, 1.3) for k = 1 .. N-1: the same shape, the same grid relative
 to it, only the last bits of the coordinates differ. A mesher whose goals hold by a margin gives the
 same verdicts on every shift; where they hold by luck, a shift loses them. For every run it prints
-the minimum scaled Jacobian, the boundary faces farther than a quarter surface size from the input
-and the buffer cells removed at the end of the capture (cells the optimisation left inverted or
-flat, or OpenFOAM faults: each leaves a staircase face at the boundary), then per file the shifts
+the minimum scaled Jacobian, the boundary faces farther than a quarter surface size from the input,
+the buffer cells removed at the end of the capture (cells the optimisation left inverted or
+flat, or OpenFOAM faults: each leaves a staircase face at the boundary) and the feature fidelity
+both ways (within the report's angle tolerance, in surface sizes), then per file the shifts
 that miss a goal the unshifted mesh meets (min scaled Jacobian >= 0.3, no far face) and the
 totals over all files.
 
@@ -60,10 +61,16 @@ def run(hexmesh, src, k, options, work):
     except (OSError, ValueError):
         return stem, k, None
     b = r["boundary"]
-    return stem, k, {"min_scaled_jacobian": r["quality"]["scaled_jacobian"]["min"],
-                     "far_faces": r["fidelity"]["faces_beyond_quarter_surface_size"],
-                     "removed_buffer_cells": b["removed_buffer_cells"],
-                     "seconds": r["seconds"]["total"]}
+    out = {"min_scaled_jacobian": r["quality"]["scaled_jacobian"]["min"],
+           "far_faces": r["fidelity"]["faces_beyond_quarter_surface_size"],
+           "removed_buffer_cells": b["removed_buffer_cells"],
+           "seconds": r["seconds"]["total"]}
+    # the feature fidelity within the report's angle tolerance, both ways, in surface sizes
+    s = r["fidelity"]["surface_size"]
+    tol = (r.get("feature_fidelity") or {}).get("within_tolerance") or {}
+    if s > 0 and "input_to_mesh" in tol:
+        out["features"] = [tol["input_to_mesh"] / s, tol["mesh_to_input"] / s]
+    return stem, k, out
 
 
 def main():
@@ -89,8 +96,9 @@ def main():
         for stem, k, r in ex.map(lambda j: run(args.hexmesh, j[0], j[1], j[2], work), jobs):
             results.setdefault(stem, {})[k] = r
             print("%-22s shift %d: %s" % (stem, k, "no report" if r is None else
-                  "min scaled Jacobian %.3f, far faces %d, removed buffer cells %d, %.1f s" %
-                  (r["min_scaled_jacobian"], r["far_faces"], r["removed_buffer_cells"], r["seconds"])), flush=True)
+                  "min scaled Jacobian %.3f, far faces %d, removed buffer cells %d, features %s s, %.1f s" %
+                  (r["min_scaled_jacobian"], r["far_faces"], r["removed_buffer_cells"],
+                   "%.2f / %.2f" % tuple(r["features"]) if "features" in r else "-", r["seconds"])), flush=True)
     print("\nper file, each shift as min scaled Jacobian / far faces / removed buffer cells:")
     runs = missed_sj = missed_far = removed_runs = removed_cells = 0
     for stem in sorted(results):
@@ -100,6 +108,11 @@ def main():
             r = row.get(k)
             cells.append("no report" if r is None else "%.3f/%d/%d" % (r["min_scaled_jacobian"], r["far_faces"], r["removed_buffer_cells"]))
         print("  %-22s %s" % (stem, "  ".join(cells)))
+        ff = [r["features"] for r in row.values() if r and "features" in r]
+        if ff:
+            print("  %-22s features (within the angle tolerance, x surface size): input->mesh %.2f - %.2f, "
+                  "mesh->input %.2f - %.2f" % ("", min(f[0] for f in ff), max(f[0] for f in ff),
+                                                min(f[1] for f in ff), max(f[1] for f in ff)))
         # the goals the unshifted mesh meets (all of them where shift 0 was not run)
         r0 = row.get(0)
         sj_goal = r0["min_scaled_jacobian"] >= 0.3 if r0 else True
