@@ -205,7 +205,8 @@ FAR_FACES_AT_MOST = {"elephant-with-holes": 44, "rotor": 130, "teapot": 85}
 STAIRCASE_RETRIED = {"bunny", "elephant-with-holes", "fandisk", "fandisk_crack", "rotor", "teapot"}
 # some of the files where the polish's joint moves let curve or corner vertices off their feature
 # (within 0.2 / 0.1 local size) to raise a cell below 0.3 (their minima and counts in the manual)
-LOOSENED = {"elephant", "elephant-with-holes", "fandisk", "fandisk_crack"}
+# (fandisk and fandisk_crack no longer since flat cells count as inverted)
+LOOSENED = {"elephant", "elephant-with-holes"}
 # the issue's quality goals, where they are met at those sizes: min scaled Jacobian >= 0.3, and
 # max non-orthogonality <= 65 degrees
 # (anchor rose from 0.157 to 0.302 when the staircase stopped digging notches at non-manifold
@@ -239,8 +240,11 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # decomposition, and are kept (elephant 0.302, teapot 0.351); since the feature paths are searched
 # again with the curves left short first (no gap left at teapot's corners), teapot's first capture
 # leaves a cell below 0.3 again: the third is kept (0.328); since closed curves get pillows with
-# their chains up to 2.5 local sizes off (`choose_pillows()`), its first capture is kept (0.357)
-CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack"}
+# their chains up to 2.5 local sizes off (`choose_pillows()`), its first capture is kept (0.357);
+# since flat cells count as inverted (see the manual's "Round-off decides some figures": which
+# capture is kept follows round-off) cube_nonmanifold's first capture is kept (0.320), elephant's
+# and elephant-with-holes' second
+CAPTURE_RETRIED = {"elephant", "elephant-with-holes", "fandisk_crack"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
@@ -265,8 +269,12 @@ CAPTURE_RETRIED = {"cube_nonmanifold", "fandisk_crack"}
 # 0.37 / 0.74 -> 0.03 / 0.02, its rims no longer turn inside faces; anchor's eight hole rims
 # pillowed, its turns 220 -> 117, but the worst places, elsewhere, move: 0.24 / 0.42 -> 0.26 / 0.45,
 # the turn at the corner (0.36, -0.2, 0.16))
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.27, 0.47), "anchor_dupflip": (0.27, 0.47), "t20_part": (0.75, 0.8),
-                          "fandisk": (0.75, 0.55), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
+# (flat cells counted as inverted: anchor 0.26 / 0.45 -> 0.33 / 0.51, fandisk 0.66 / 0.47 -> 0.66 /
+# 0.92; these are single samples of a wide spread: over the test surfaces shifted by 1e-9 of their
+# diagonal, `benchmark/Hex_meshing_3/perturbation.py --shifts 8`, anchor's mesh->input went 0.45 -
+# 0.81 before and 0.42 - 0.68 after, fandisk's 0.47 - 2.13 before and 0.52 - 0.94 after)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.35, 0.53), "anchor_dupflip": (0.35, 0.53), "t20_part": (0.75, 0.8),
+                          "fandisk": (0.75, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases; 0.66 / 0.85 with its
@@ -277,8 +285,9 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.27, 0.47), "anchor_dupflip": (0.27, 0.47)
 # 0.27 / 0.64; paths paying for another curve's vertices: fandisk 0.27 / 0.47, anchor 0.26 / 0.48;
 # the paths searched again: anchor 0.24 / 0.42; closed curves pillowed: anchor 0.26 / 0.45,
 # cylinder 0.03 / 0.02)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.27, 0.47), "anchor_dupflip": (0.27, 0.47), "t20_part": (0.4, 0.7),
-                                   "fandisk": (0.35, 0.55), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
+# (flat cells counted as inverted: anchor 0.26 / 0.51, fandisk 0.27 / 0.92)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.28, 0.53), "anchor_dupflip": (0.28, 0.53), "t20_part": (0.4, 0.7),
+                                   "fandisk": (0.35, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)

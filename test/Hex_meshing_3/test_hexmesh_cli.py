@@ -218,8 +218,10 @@ def main():
         # (at 10 smoothing sweeps the capture with pillows is kept; at the default 8, and at 11 or 12
         # since released curve vertices go back to their curve, a retry without; since the feature
         # paths are searched again with the curves left short first: at 11, 13 and 16 sweeps the
-        # capture with pillows, at 9, 10, 12 and 14 a retry without)
-        ("fandisk.off", ["--size", "0.1", "--surface-size", "0.025", "--feature-pillows", "--smoothing-sweeps", "13"],
+        # capture with pillows, at 9, 10, 12 and 14 a retry without; since flat cells count as
+        # inverted: at 8, 9 and 14 with pillows, at 10 - 13, 15 and 16 without - the choice
+        # follows round-off, see the manual's "Round-off decides some figures")
+        ("fandisk.off", ["--size", "0.1", "--surface-size", "0.025", "--feature-pillows", "--smoothing-sweeps", "9"],
          "fandisk_pillows"),
         ("anchor.off", ["--size", "0.12", "--surface-size", "0.03"], "anchor"),
         ("bunny.off", [], "bunny_default"),
@@ -343,9 +345,9 @@ def main():
               f"fandisk: some pillows ({fp['boundary']['pillow_cells']} cells)")
         # --smoothing-sweeps bounds the capture's main sweeps (8 by default)
         fd = results["fandisk"][1]
-        check(fp["options"].get("smoothing_sweeps") == 13 and fd["options"].get("smoothing_sweeps") == 8 and
-              0 < fd["boundary"]["optimisation_passes"] <= 8 < fp["boundary"]["optimisation_passes"] <= 13,
-              f"--smoothing-sweeps: the report gives 13 and 8 (default), and at most that many sweeps ran "
+        check(fp["options"].get("smoothing_sweeps") == 9 and fd["options"].get("smoothing_sweeps") == 8 and
+              0 < fd["boundary"]["optimisation_passes"] <= 8 < fp["boundary"]["optimisation_passes"] <= 9,
+              f"--smoothing-sweeps: the report gives 9 and 8 (default), and at most that many sweeps ran "
               f"({fp['boundary']['optimisation_passes']}, {fd['boundary']['optimisation_passes']})")
 
     # per-part surface sizes: a unit box whose top face is the part "lid"; as a staircase the cells

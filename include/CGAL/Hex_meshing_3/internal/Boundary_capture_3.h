@@ -429,6 +429,12 @@ class Boundary_capture_3
 public:
   typedef std::uint32_t Index;
   static constexpr Index NONE = ~Index(0);
+  // A cell whose quality is at most this is flat, as good as inverted: a corner whose three edges
+  // are coplanar to round-off (a surface vertex whose closest point is the crease between two
+  // curve vertices of its face, a curve vertex between two others on a straight curve) scores
+  // 1e-14, not 0. The untangling and the release work on such cells too, and no joint move may
+  // leave one (the cleanup would remove it, leaving a hole in the buffer).
+  static constexpr double degenerate_quality = 1e-6;
   typedef typename Domain::Geom_traits GT;
   typedef typename GT::Point_3 Point_3;
   typedef typename GT::Segment_3 Segment_3;
@@ -2461,7 +2467,7 @@ private:
     auto untangle = [&]() {
       new_epoch();
       for(int pass = 0; pass < opt.passes; ++pass) {
-        for(Index c : low) if(cell_quality(c) <= 0) for(Index v : m.hexahedra[c]) add_vertex(v);
+        for(Index c : low) if(cell_quality(c) <= degenerate_quality) for(Index v : m.hexahedra[c]) add_vertex(v);
         if(work.empty()) break;
         // the shape energy's barrier pulls inverted corners back; the max-min step then works on
         // what is left
@@ -2470,7 +2476,7 @@ private:
       }
       work.clear();
     };
-    // cells still inverted: first their curve and corner vertices go back to being surface
+    // cells still inverted (or flat): first their curve and corner vertices go back to being surface
     // vertices (a feature is lost there rather than the surface), then their surface vertices
     // are released into the volume
     // (curve vertices first; corners only if that was not enough)
@@ -2479,7 +2485,7 @@ private:
     for(const Kind which : {CURVE, CORNER}) {
       bool unsnapped = false;
       for(Index c : low)
-        if(cell_quality(c) <= 0)
+        if(cell_quality(c) <= degenerate_quality)
           for(Index v : m.hexahedra[c])
             if(kind[v] == which) {
               kind[v] = SURFACE;
@@ -2494,7 +2500,7 @@ private:
     for(int round = 0; round < 4; ++round) {
     bool released = false;
     for(Index c : low)
-      if(cell_quality(c) <= 0)
+      if(cell_quality(c) <= degenerate_quality)
         for(Index v : m.hexahedra[c])
           if(kind[v] == SURFACE || kind[v] == CURVE || kind[v] == CORNER) {
             if(kind[v] != SURFACE) {   // a feature vertex released: it goes back to its curve too
@@ -2671,7 +2677,7 @@ private:
           bool ok = true;
           for(std::size_t i = 0; i < all.size() && ok; ++i) {
             const double q = current_quality(all[i]);
-            ok = q > 0 && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : opt.joint_quality) && (c0[i] || !cell_concave(all[i]));
+            ok = q > degenerate_quality && q >= (std::min)(q0[i], is_cap ? opt.sheet_cap_quality : opt.joint_quality) && (c0[i] || !cell_concave(all[i]));
           }
           for(std::size_t i = 0; is_cap && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
           if(ok) {
