@@ -2476,9 +2476,9 @@ private:
       }
       work.clear();
     };
-    // cells still inverted (or flat): first their curve and corner vertices go back to being surface
-    // vertices (a feature is lost there rather than the surface), then their surface vertices
-    // are released into the volume
+    // cells still inverted (or flat): first their curve and corner vertices go back to being
+    // surface vertices (a feature is lost there rather than the surface), then their surface
+    // vertices are released into the volume
     // (curve vertices first; corners only if that was not enough)
     struct Lost { Index v; Kind kind; Vec3 where; };
     std::vector<Lost> unsnapped_list;
