@@ -83,7 +83,9 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  * - the vertices near the boundary are moved to raise the minimum scaled Jacobian (and face
  *   pyramid quality) of their cells, never making a valid cell invalid; curve vertices of cells
  *   still inverted return to the surface, then surface vertices are released into the volume
- *   (reported in the statistics as unreached), and buffer cells still below 0.02 are removed
+ *   (reported in the statistics as unreached); both go back as far as their cells allow, alone
+ *   or with their neighbours making room (`Meshing_statistics::feature_joint_moves`), and buffer
+ *   cells still below 0.02 are removed
  *   (their staircase face is the boundary there), as are those at a face OpenFOAM would find
  *   skewed beyond 3.5 or non-orthogonal beyond 70 degrees; before that removal, the cells of faces that cannot be cut
  *   into positive tetrahedra with both cell centres (OpenFOAM's "face tets") are moved until

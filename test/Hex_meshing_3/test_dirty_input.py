@@ -189,6 +189,11 @@ INPUT_WITHIN_HALF_SURFACE_SIZE = {"anchor", "anchor_dupflip", "bunny", "cube", "
                                   "elephant", "fandisk", "fandisk_crack", "t20_part"}
 # (cylinder no longer since its rims get feature pillows: no face of it stands off; bunny instead)
 FIDELITY_MOVES = {"bunny", "eight"}
+# curve and corner vertices unsnapped to untangle cells that the reattachment rounds leave off
+# their feature go back in joint moves, their neighbours making room (`feature_joint_moves`): the
+# feature vertices still unsnapped at most (before: anchor 76, anchor_dupflip 76, fandisk 104; with
+# them 41, 31 and 51, 35, 45 and 53 joint moves kept)
+UNSNAPPED_AT_MOST = {"anchor": 55, "anchor_dupflip": 55, "fandisk": 70}
 # where that goal is not met yet: at most this many faces beyond it (regression guards a little
 # above the figures of 2026-12-04 at fb28a15: bunny 16, elephant 46, elephant-with-holes 38,
 # fandisk 6 (10 before the joint moves' second target and round), fandisk_crack 4, rotor 137,
@@ -273,7 +278,9 @@ CAPTURE_RETRIED = {"elephant", "elephant-with-holes", "fandisk_crack"}
 # 0.92; these are single samples of a wide spread: over the test surfaces shifted by 1e-9 of their
 # diagonal, `benchmark/Hex_meshing_3/perturbation.py --shifts 8`, anchor's mesh->input went 0.45 -
 # 0.81 before and 0.42 - 0.68 after, fandisk's 0.47 - 2.13 before and 0.52 - 0.94 after)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.35, 0.53), "anchor_dupflip": (0.35, 0.53), "t20_part": (0.75, 0.8),
+# (unsnapped feature vertices put back in joint moves: anchor 0.33 / 0.51 -> 0.26 / 0.51; over the
+# 8 shifts anchor's input->mesh 0.23 - 0.62 -> 0.23 - 0.36, fandisk's 0.60 - 1.23 -> 0.59 - 0.71)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.28, 0.53), "anchor_dupflip": (0.28, 0.53), "t20_part": (0.75, 0.8),
                           "fandisk": (0.75, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
@@ -286,8 +293,10 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.35, 0.53), "anchor_dupflip": (0.35, 0.53)
 # the paths searched again: anchor 0.24 / 0.42; closed curves pillowed: anchor 0.26 / 0.45,
 # cylinder 0.03 / 0.02)
 # (flat cells counted as inverted: anchor 0.26 / 0.51, fandisk 0.27 / 0.92)
+# (unsnapped feature vertices put back in joint moves: fandisk 0.27 / 0.92 -> 0.23 / 0.92; over the 8
+# shifts its input->mesh 0.26 - 0.61 -> 0.22 - 0.36)
 FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.28, 0.53), "anchor_dupflip": (0.28, 0.53), "t20_part": (0.4, 0.7),
-                                   "fandisk": (0.35, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
+                                   "fandisk": (0.25, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -1198,6 +1207,10 @@ def main():
         b = j["boundary"]
         if stem in LOOSENED:
             check(b["loosened_vertices"] > 0, f"{stem}: {b['loosened_vertices']} feature vertices loosened (expected some)")
+        if stem in UNSNAPPED_AT_MOST:
+            check(b["feature_joint_moves"] > 0 and b["unsnapped_vertices"] <= UNSNAPPED_AT_MOST[stem],
+                  f"{stem}: {b['feature_joint_moves']} unsnapped feature vertices put back in joint moves, "
+                  f"{b['unsnapped_vertices']} still off their feature (at most {UNSNAPPED_AT_MOST[stem]})")
         check(len(b["missed_curves_first_100"]) == min(100, b["curves_missed"]) and
               len(b["curve_turns_first_100"]) == min(100, b["curve_turns"]) and
               len(b["removed_buffer_cells_first_100"]) == min(100, b["removed_buffer_cells"]) and

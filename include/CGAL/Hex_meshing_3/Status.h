@@ -126,6 +126,7 @@ struct Meshing_statistics
   std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
   std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
   std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface, or released into the volume, to untangle cells (they are brought back towards their feature afterwards, as far as their cells allow)
+  std::size_t feature_joint_moves = 0;      ///< of the `unsnapped_vertices`, those put back on their curve or corner in a joint move (their neighbours making room, no cell below min(its quality, 0.35)); not counted in `unsnapped_vertices` any more
   std::size_t face_split_repairs = 0;       ///< vertex moves of the repairs of faces none of whose diagonal splits was valid for OpenFOAM (the face-split repair and the unfolding after the repairs and after the polish)
   std::size_t non_orthogonality_repairs = 0;   ///< vertex moves that lowered the non-orthogonality of faces beyond 50 degrees
   std::size_t polish_moves = 0;   ///< vertex moves of the final polish that raised the worst cells (below 0.35)
