@@ -2655,11 +2655,11 @@ private:
           ntargets = 1;
         } else {
           targets[0] = clamp_planes(v, closest_on_curve(x0, curve_of[v]));
-          targets[1] = clamp_planes(v, closest_on_curve(smoothing_target(v), curve_of[v]));
         }
         // (a feature vertex more than a local size from its feature is not tried: on the
         // motorBike, 3,562 of its 6,612 tries were, for 6 of the 131 kept, and 5 s)
         if(lost && norm(sub(targets[0], x0)) > hloc[v]) return false;
+        if(lost && lost->kind != CORNER) targets[1] = clamp_planes(v, closest_on_curve(smoothing_target(v), curve_of[v]));
         const double floor_quality = is_cap ? opt.sheet_cap_quality : lost ? opt.feature_joint_quality : opt.joint_quality;
         affected_cells(v, around);
         nb.clear();
