@@ -199,15 +199,11 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       the feature paths' turn penalty to snap weight, 2.5, 3.75, 1.67 after the default 5) until
  *       one leaves no cell below 0.3 and no fault that checkMesh -allGeometry reports (cells
  *       concave for OpenFOAM, faces failing its tet decomposition, on the points an OpenFOAM case
- *       gets). And where the mesh has a boundary face farther than a quarter of the criteria's
- *       surface size from the input (`Hex_meshing_3::boundary_fidelity()`), such a fault or a
- *       cell below 0.3 (at most 10, or any number where the capture made pillows), the whole mesh
- *       is made again with the staircase's surface vertices 0.25 cell sizes from the surface,
- *       then 0.2, instead of 0.4, until one has none of them. Each mesh's captures are retried
- *       before the next mesh is made, but where its first capture has far faces and more than 10
- *       cells below 0.3: those retries wait until the meshes are compared, and run only for the
- *       one kept (fandisk at diagonal / 80: 4 captures in 8.8 s instead of 9 in 19.4 s, the same
- *       mesh). Every retry counts the cells of the
+ *       gets). Then, where the mesh kept has a boundary face farther than a quarter of the
+ *       criteria's surface size from the input (`Hex_meshing_3::boundary_fidelity()`), such a
+ *       fault or a cell below 0.3 (at most 10), the whole mesh is made again, its captures
+ *       retried as above, with the staircase's surface vertices 0.25 cell sizes from the surface,
+ *       then 0.2, instead of 0.4, until one has none of them. Every retry counts the cells of the
  *       first capture's mesh against this budget, and runs only if they fit in what is left: a
  *       mesh of N cells gets at most budget / N retries (none above the budget), so small meshes
  *       get every retry and large ones few (elephant at diagonal / 80 with `--size 4h
@@ -355,253 +351,188 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     features = own.get();
   }
 
-  // The capture's options, and the sequence of its tries on one grid: with pillows (if asked),
-  // then without, with the feature paths' weights in the ratio 5 by default, then 2.5, 3.75, 1.67.
-  // The chains of grid edges that become the feature curves are shortest paths whose costs weigh
-  // the distance to the curve (`snap_weight`) and turns inside a face (`turn_penalty`). Where
-  // curves are dense (dirty or detailed CAD), the worst cells depend on which paths these weights
-  // pick, and no one setting suits every input: on the 15 test surfaces the default leaves cells
-  // below a scaled Jacobian of 0.3 in 2 files, other ratios of the weights in 2 to 6 (fandisk
-  // falls to 0.03 at some). Pillows lift the worst cells along convex curves (the cube 0.57 ->
-  // 0.88, anchor 0.317 -> 0.334) but leave cells below 0.3 at some (cube_nonmanifold's fin,
-  // fandisk_crack): there the captures without them are kept.
-  typedef Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> Capture;
-  typename Capture::Options copt;
-  copt.feature_pillows = choose_parameter(get_parameter(np, HNP::feature_pillows), true);
-  if(!polish) copt.polish_passes = copt.patch_iterations = 0;
-  copt.passes = (std::max)(1, int(choose_parameter(get_parameter(np, HNP::smoothing_sweeps), copt.passes)));
-  struct Choice { bool pillows; double turn, snap; };
-  std::vector<Choice> sequence;
-  if(copt.feature_pillows) sequence.push_back({true, 1, 1});
-  for(const Choice& c : {Choice{false, 1, 1}, Choice{false, 1, 2}, Choice{false, 0.75, 1}, Choice{false, 1, 3}})
-    sequence.push_back(c);
-
-  // One staircase: the grid with its staircase kept `gap` cell sizes off the surface, its best
-  // capture so far, and what the retries of `capture_retry_cells` need to go on from the grid.
-  typedef decltype(rank(std::size_t(0), std::size_t(0), faults(out))) Rank;
-  struct Staircase {
-    double gap = 0;
-    HexMesh mesh;                    // the best capture so far (the grid where none ran)
-    std::unique_ptr<HexMesh> grid;   // the grid before its capture, where the retries may run
-    Hex_meshing_3::Meshing_statistics stats, stats0;
-    std::vector<Hex_meshing_3::Region_leak> leaks;
-    Hex_meshing_3::Status status = Hex_meshing_3::Status::SUCCESS;
-    std::vector<Choice> sequence;    // the tries left for this grid, from `next` on
-    std::size_t next = 1;
-    bool first_had_pillows = false, hopeless = false, retried = false;
-    Rank best{};
-  };
-  auto options_of = [&](const Staircase& s, std::size_t choice) {
-    typename Capture::Options o = copt;
-    o.feature_pillows = s.sequence[choice].pillows;
-    o.turn_penalty *= s.sequence[choice].turn;
-    o.snap_weight *= s.sequence[choice].snap;
-    return o;
-  };
-
-  // The grid of one staircase and its first capture. Where the capture leaves a cell below 0.3 or
-  // a fault that checkMesh -allGeometry reports (a concave cell, a face failing the tet
-  // decomposition: `faults` above), the mesh is small enough (`retry_cells`) and has feature
-  // curves, the grid is kept for the retries of `retry_captures()`, and the first capture's faults
-  // are measured (no retry if it leaves more than 10 cells below 0.3, see `max_low_cells`). The
-  // buffer cells that checkMesh -allGeometry would still find concave or at a face failing the tet
-  // decomposition are removed at the end of the capture (`Meshing_statistics::foam_fault_cells`;
-  // their staircase faces become the boundary there): the first capture removes them; the retries
-  // do not (another choice of paths may leave no such fault, with no cell removed), and a retry
-  // kept runs once more with the removal if it has faults. (Not with `polish_worst_cells(false)`:
-  // the retries look for the best polished mesh.)
-  auto first_capture = [&](double gap, Staircase& s) {
-    s.gap = gap;
+  // One mesh: the grid, its staircase kept `gap` cell sizes off the surface, and its capture (with
+  // the retries of `capture_retry_cells`).
+  auto mesh_once = [&](double gap, HexMesh& out, Hex_meshing_3::Meshing_statistics& stats,
+                       std::vector<Hex_meshing_3::Region_leak>& leaks) {
     Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
-    s.status = mesher.run(s.mesh, max_cells, seed, visitor, body_fitted ? gap : 0.0);
-    s.stats = mesher.statistics();
-    s.leaks = mesher.leaks();
+    Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor, body_fitted ? gap : 0.0);
+    stats = mesher.statistics();
+    leaks = mesher.leaks();
     mesher.release();   // the capture's memory peak need not hold the octree too
-    if(!body_fitted || s.status == Hex_meshing_3::Status::CANCELED || s.mesh.number_of_cells() == 0) return;
-    visitor.on_phase_begin("capture", s.mesh.number_of_cells());
-    const bool may_retry = s.mesh.number_of_cells() <= retry_left && retry_cells > 0 && copt.patch_iterations > 0 &&
-                           !features->curves().empty();
-    s.sequence = sequence;
-    if(may_retry) s.grid = std::make_unique<HexMesh>(s.mesh);
-    s.stats0 = s.stats;
-    Capture capture(s.mesh, domain, features, s.stats, options_of(s, 0));
-    const bool ran = capture.run(visitor);
-    s.stats.capture_tries = 1;
-    if(capture_cost == 0) capture_cost = (std::max)(s.mesh.number_of_cells(), std::size_t(1));
-    if(ran && may_retry) {
-      // the first capture's faults: those left after its removal, and those its removal found
-      // (as `faults()` counts them on the same capture without the removal); its cells below 0.3
-      // and minimum after the removal
-      const auto f0 = faults(s.mesh);
-      s.best = rank(std::get<0>(f0), capture.foam_faults_found, f0);
-      // Where the first capture made no pillow it was the capture without them, which is not run
-      // again; after one with pillows, the one without runs whatever the count of cells below
-      // 0.3, and its own count decides whether the other weights are tried.
-      s.first_had_pillows = s.sequence[0].pillows && s.stats.pillow_cells > 0;
-      if(s.sequence[0].pillows && !s.first_had_pillows) s.sequence.erase(s.sequence.begin() + 1);
-      s.hopeless = std::get<1>(s.best) > max_low_cells && !s.first_had_pillows;
-    } else
-      s.grid.reset();
-    if(!ran) s.status = Hex_meshing_3::Status::CANCELED;
-    visitor.on_phase_end("capture");
-    s.stats.kept_cells = s.mesh.number_of_cells();
-  };
-
-  // The retries of a staircase's capture: the tries of its sequence from the same grid in turn,
-  // until one leaves neither a cell below 0.3 nor a fault; the capture with the fewest faults is
-  // kept (deterministic, at most four captures; the report gives `capture_tries` and
-  // `capture_choice`). Returns true if a capture ran.
-  auto retry_captures = [&](Staircase& s) {
-    if(s.retried || !s.grid || s.status == Hex_meshing_3::Status::CANCELED) return false;
-    s.retried = true;
-    Hex_meshing_3::Meshing_statistics& stats = s.stats;
-    bool began = false;
-    for(; s.next < s.sequence.size() && !s.hopeless &&
-          (std::get<0>(s.best) > 0 || std::get<1>(s.best) > 0 || std::get<3>(s.best) > 0); ++s.next) {
-      if(capture_cost > retry_left) break;   // (the budget is spent)
-      retry_left -= capture_cost;
-      if(!began) { visitor.on_phase_begin("capture", s.grid->number_of_cells()); began = true; }
-      typename Capture::Options o = options_of(s, s.next);
-      o.remove_foam_faults = false;
-      HexMesh trial(*s.grid);
-      Hex_meshing_3::Meshing_statistics st = s.stats0;
-      const bool ok = Capture(trial, domain, features, st, o).run(visitor);
-      ++stats.capture_tries;
-      if(!ok) { s.status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
-      const auto f = faults(trial);
-      const auto r = rank(0, std::get<0>(f), f);
-      if(s.next == 1 && s.first_had_pillows) s.hopeless = std::get<1>(f) > max_low_cells;
-      if(r < s.best) {
-        const std::size_t tries = stats.capture_tries;
-        s.best = r;
-        s.mesh = std::move(trial);
-        stats = st;
-        stats.capture_tries = tries;
-        stats.capture_choice = s.next;
+    if(body_fitted && status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
+      visitor.on_phase_begin("capture", out.number_of_cells());
+      typedef Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> Capture;
+      typename Capture::Options copt;
+      copt.feature_pillows = choose_parameter(get_parameter(np, HNP::feature_pillows), true);
+      if(!polish) copt.polish_passes = copt.patch_iterations = 0;
+      copt.passes = (std::max)(1, int(choose_parameter(get_parameter(np, HNP::smoothing_sweeps), copt.passes)));
+      // The chains of grid edges that become the feature curves are shortest paths whose costs
+      // weigh the distance to the curve (`snap_weight`) and turns inside a face (`turn_penalty`).
+      // Where curves are dense (dirty or detailed CAD), the worst cells depend on which paths these
+      // weights pick, and no one setting suits every input: on the 15 test surfaces the default
+      // leaves cells below a scaled Jacobian of 0.3 in 2 files, other ratios of the weights in 2 to
+      // 6 (fandisk falls to 0.03 at some). So where the first capture leaves a cell below 0.3 or a
+      // fault that checkMesh -allGeometry reports (a concave cell, a face failing the tet
+      // decomposition: `faults` below), the mesh is small enough (`retry_cells`) and has feature
+      // curves, the capture runs again from the same grid with other ratios in turn, until one
+      // leaves neither, and the mesh with the fewest faults is kept (the first capture's faults are
+      // measured on every such mesh; no retry if it leaves more than 10 cells below 0.3, see
+      // `max_low_cells`):
+      // deterministic, at most four captures, on such meshes only (the report gives `capture_tries`
+      // and `capture_choice`). (Not with `polish_worst_cells(false)`: the retries look for the
+      // best polished mesh.)
+      const bool may_retry = out.number_of_cells() <= retry_left && retry_cells > 0 && copt.patch_iterations > 0 &&
+                             !features->curves().empty();
+      // The buffer cells that checkMesh -allGeometry would still find concave or at a face failing
+      // the tet decomposition are removed at the end of the capture (`Meshing_statistics::
+      // foam_fault_cells`; their staircase faces become the boundary there). The first capture
+      // removes them; the retries do not (another choice of paths may leave no such fault, with no
+      // cell removed), and a retry kept runs once more with the removal if it has faults.
+      // (`copt.remove_foam_faults`: true by default)
+      //
+      // The sequence of captures: with pillows (if asked), then without, with the paths' weights in
+      // the ratio 5 by default, then 2.5, 3.75, 1.67. Pillows lift the worst cells along convex
+      // curves (the cube 0.57 -> 0.88, anchor 0.317 -> 0.334) but leave cells below 0.3 at some
+      // (cube_nonmanifold's fin, fandisk_crack): there the captures without them are kept.
+      struct Choice { bool pillows; double turn, snap; };
+      std::vector<Choice> sequence;
+      if(copt.feature_pillows) sequence.push_back({true, 1, 1});
+      for(const Choice& c : {Choice{false, 1, 1}, Choice{false, 1, 2}, Choice{false, 0.75, 1}, Choice{false, 1, 3}})
+        sequence.push_back(c);
+      auto options_of = [&](std::size_t choice) {
+        typename Capture::Options o = copt;
+        o.feature_pillows = sequence[choice].pillows;
+        o.turn_penalty *= sequence[choice].turn;
+        o.snap_weight *= sequence[choice].snap;
+        return o;
+      };
+      std::unique_ptr<HexMesh> grid;
+      if(may_retry) grid = std::make_unique<HexMesh>(out);
+      const Hex_meshing_3::Meshing_statistics stats0 = stats;
+      Capture first_capture(out, domain, features, stats, options_of(0));
+      bool ran = first_capture.run(visitor);
+      stats.capture_tries = 1;
+      if(capture_cost == 0) capture_cost = (std::max)(out.number_of_cells(), std::size_t(1));
+      if(ran && may_retry) {
+        // the first capture's faults: those left after its removal, and those its removal found
+        // (as `faults()` counts them on the same capture without the removal); its cells below
+        // 0.3 and minimum after the removal
+        const auto f0 = faults(out);
+        auto best = rank(std::get<0>(f0), first_capture.foam_faults_found, f0);
+        // Where the first capture made no pillow it was the capture without them, which is not run
+        // again; after one with pillows, the one without runs whatever the count of cells below 0.3,
+        // and its own count decides whether the other weights are tried.
+        const bool first_had_pillows = sequence[0].pillows && stats.pillow_cells > 0;
+        if(sequence[0].pillows && !first_had_pillows) sequence.erase(sequence.begin() + 1);
+        bool hopeless = std::get<1>(best) > max_low_cells && !first_had_pillows;
+        for(std::size_t choice = 1; choice < sequence.size() && !hopeless &&
+                                    (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<3>(best) > 0); ++choice) {
+          if(capture_cost > retry_left) break;   // (the budget is spent)
+          retry_left -= capture_cost;
+          typename Capture::Options o = options_of(choice);
+          o.remove_foam_faults = false;
+          HexMesh trial(*grid);
+          Hex_meshing_3::Meshing_statistics st = stats0;
+          const bool ok = Capture(trial, domain, features, st, o).run(visitor);
+          ++stats.capture_tries;
+          if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
+          const auto f = faults(trial);
+          const auto r = rank(0, std::get<0>(f), f);
+          if(choice == 1 && first_had_pillows) hopeless = std::get<1>(f) > max_low_cells;
+          if(r < best) {
+            const std::size_t tries = stats.capture_tries;
+            best = r;
+            out = std::move(trial);
+            stats = st;
+            stats.capture_tries = tries;
+            stats.capture_choice = choice;
+          }
+        }
+        if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<3>(best) > 0) {
+          typename Capture::Options o = options_of(stats.capture_choice);
+          o.remove_foam_faults = true;
+          HexMesh trial(*grid);
+          Hex_meshing_3::Meshing_statistics st = stats0;
+          const std::size_t tries = stats.capture_tries + 1, choice = stats.capture_choice;
+          if(Capture(trial, domain, features, st, o).run(visitor)) {
+            out = std::move(trial);
+            stats = st;
+            stats.capture_choice = choice;
+          } else
+            status = Hex_meshing_3::Status::CANCELED;   // (the best mesh so far stays)
+          stats.capture_tries = tries;
+        }
       }
+      if(!ran) status = Hex_meshing_3::Status::CANCELED;
+      visitor.on_phase_end("capture");
+      stats.kept_cells = out.number_of_cells();
     }
-    if(s.status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<3>(s.best) > 0) {
-      if(!began) { visitor.on_phase_begin("capture", s.grid->number_of_cells()); began = true; }
-      typename Capture::Options o = options_of(s, stats.capture_choice);
-      o.remove_foam_faults = true;
-      HexMesh trial(*s.grid);
-      Hex_meshing_3::Meshing_statistics st = s.stats0;
-      const std::size_t tries = stats.capture_tries + 1, choice = stats.capture_choice;
-      if(Capture(trial, domain, features, st, o).run(visitor)) {
-        s.mesh = std::move(trial);
-        stats = st;
-        stats.capture_choice = choice;
-      } else
-        s.status = Hex_meshing_3::Status::CANCELED;   // (the best mesh so far stays)
-      stats.capture_tries = tries;
-    }
-    if(began) visitor.on_phase_end("capture");
-    stats.kept_cells = s.mesh.number_of_cells();
-    s.grid.reset();
-    return began;
+    return status;
   };
 
   // The staircase keeps its surface vertices `gaps[0]` cell sizes off the surface. Where the mesh
   // that gives is small enough for the retries (`capture_retry_cells`) and has a boundary face
-  // farther than a quarter of the surface size from the input (`far_faces()`), a cell below 0.3
-  // (at most `max_low_cells`, unless its capture made pillows) or an OpenFOAM fault, the grid is
-  // made again with the staircase closer to the surface, `gaps[1]` then `gaps[2]`, until one has
-  // none of them; the mesh with the fewest faults, then cells below 0.3, then far faces, then the
-  // highest minimum is kept. A thinner buffer layer reaches some corners and concave curves a
-  // thicker one does not, and loses others: on the 15 test surfaces no one gap leaves the fewest
-  // far faces on all of them (fandisk 6 / 0 / 0 far faces at 0.4 / 0.25 / 0.2, fandisk_crack 4 /
-  // 1 / 0, elephant 46 / 42 / 49, teapot 75 / 96 / 135 with 23 cells below 0.3 at 0.25).
-  // Each staircase's capture is retried before the next staircase is made, but where its first
-  // capture has far faces and more than `max_low_cells` cells below 0.3 (with pillows: without,
-  // it is not retried at all): other weights rarely lift that many, and a closer staircase may
-  // reach what the far faces miss, so its retries wait until the staircases are compared and run
-  // only if it is kept (and the mesh kept is not clean by then). Retrying it at once cost
-  // fandisk at diagonal / 80 nine captures (19.4 s) where four find the same mesh (8.8 s): its
-  // staircases at 0.4 and 0.25 leave 12 and 15 cells below 0.3 and 39 and 36 far faces, four and
-  // one retries lift none of that; at 0.2, 2 and 27, one retry leaves none below 0.3.
+  // farther than a quarter of the surface size from the input (`far_faces()`) or a cell below 0.3
+  // (at most `max_low_cells`), the whole mesh is made again with the staircase closer to the
+  // surface, `gaps[1]` then `gaps[2]`, until one has none of them nor an OpenFOAM fault; the mesh with the
+  // fewest faults, then cells below 0.3, then far faces, then the highest minimum is kept. A
+  // thinner buffer layer reaches some corners and concave curves a thicker one does not, and
+  // loses others: on the 15 test surfaces no one gap leaves the fewest far faces on all of them
+  // (fandisk 6 / 0 / 0 far faces at 0.4 / 0.25 / 0.2, fandisk_crack 4 / 1 / 0, elephant 46 / 42 /
+  // 49, teapot 75 / 96 / 135 with 23 cells below 0.3 at 0.25).
   static constexpr double gaps[] = {0.4, 0.25, 0.2};
-  std::vector<Staircase> made(1);
-  made.reserve(std::size(gaps));
-  std::size_t kept = 0;
-  Hex_meshing_3::Status status = Hex_meshing_3::Status::SUCCESS;
-  bool compared = false;
-  // (where the visitor throws, `out` gets the best mesh so far, as valid as the capture left it)
-  try {
-    first_capture(gaps[0], made[0]);
-    status = made[0].status;
-    // (`capture_cost` is 0 where no capture ran; where the budget left has no room for another
-    // mesh, its far faces and faults are not counted)
-    if(body_fitted && polish && retry_cells > 0 && capture_cost > 0 && capture_cost <= retry_left &&
-       status != Hex_meshing_3::Status::CANCELED && made[0].mesh.number_of_cells() > 0) {
-      compared = true;
-      const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
-      auto far_faces = [&](const HexMesh& mesh) {
-        const Hex_meshing_3::Boundary_fidelity fid = Hex_meshing_3::boundary_fidelity(mesh, domain, 0);
-        return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
-                                         [&](const auto& d) { return d.first > far_bound; }));
-      };
-      // faults, cells below 0.3, far faces (`far`), minimum scaled Jacobian (negated)
-      auto score = [&](const HexMesh& mesh, std::size_t far) {
-        const auto f = faults(mesh);
-        return std::make_tuple(std::get<0>(f), std::get<1>(f), far, std::get<2>(f));
-      };
-      typedef decltype(score(out, 0)) Score;
-      auto clean = [](const Score& sc) { return std::get<0>(sc) == 0 && std::get<1>(sc) == 0 && std::get<2>(sc) == 0; };
-      // a staircase's score, its capture retried first unless it has far faces and more than
-      // `max_low_cells` cells below 0.3
-      // (the cheap counts first: a mesh with no cell below 0.3 and no far face is kept without
-      // counting its OpenFOAM faults, which its capture removed: anchor at its test size 5.25 ->
-      // 5.05 s, against 4.8 s without the staircase retries)
-      auto score_of = [&](Staircase& s) {
-        std::size_t far = far_faces(s.mesh);
-        if((far == 0 || std::get<1>(s.best) <= max_low_cells) && retry_captures(s)) far = far_faces(s.mesh);
-        if(far == 0 && low_cells(s.mesh).first == 0) return Score(0, 0, 0, 0.0);
-        return score(s.mesh, far);
-      };
-      Score best = score_of(made[0]);
-      status = made[0].status;
-      auto go_on = [&]() { return status != Hex_meshing_3::Status::CANCELED && !clean(best); };
-      for(std::size_t k = 1; k < std::size(gaps) && go_on() &&
-                             (std::get<1>(best) <= max_low_cells || made[kept].grid); ++k) {
-        if(capture_cost > retry_left) break;   // (the budget)
-        retry_left -= capture_cost;
-        made.emplace_back();
-        Staircase& s = made.back();
-        first_capture(gaps[k], s);
-        if(s.status == Hex_meshing_3::Status::CANCELED) { status = s.status; break; }   // (the best mesh so far stays)
-        if(s.mesh.number_of_cells() == 0) continue;
-        const Score sc = score_of(s);
-        if(s.status == Hex_meshing_3::Status::CANCELED) { status = s.status; break; }
-        if(sc < best) { best = sc; kept = made.size() - 1; }
-      }
-      // the retries of the staircase kept, if they were put off (the others' stay put off: their
-      // captures left more than `max_low_cells` cells below 0.3)
-      if(go_on() && retry_captures(made[kept])) {
-        if(made[kept].status == Hex_meshing_3::Status::CANCELED)
-          status = Hex_meshing_3::Status::CANCELED;
-        else
-          best = score(made[kept].mesh, far_faces(made[kept].mesh));
-      }
-      if(status != Hex_meshing_3::Status::CANCELED) status = made[kept].status;
+  std::vector<Hex_meshing_3::Region_leak> leaks;
+  Hex_meshing_3::Meshing_statistics stats;
+  Hex_meshing_3::Status status = mesh_once(gaps[0], out, stats, leaks);
+  stats.staircase_tries = 1;
+  stats.staircase_gap = gaps[0];
+  // (`capture_cost` is 0 where no capture ran; where the budget left has no room for another
+  // mesh, its far faces and faults are not counted)
+  if(body_fitted && polish && retry_cells > 0 && capture_cost > 0 && capture_cost <= retry_left &&
+     status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
+    const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
+    auto far_faces = [&](const HexMesh& mesh) {
+      const Hex_meshing_3::Boundary_fidelity fid = Hex_meshing_3::boundary_fidelity(mesh, domain, 0);
+      return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
+                                       [&](const auto& d) { return d.first > far_bound; }));
+    };
+    // faults, cells below 0.3, far faces (`far`), minimum scaled Jacobian (negated)
+    auto score = [&](const HexMesh& mesh, std::size_t far) {
+      const auto f = faults(mesh);
+      return std::make_tuple(std::get<0>(f), std::get<1>(f), far, std::get<2>(f));
+    };
+    // (the cheap counts first: a mesh with no cell below 0.3 and no far face is kept without
+    // counting its OpenFOAM faults, which its capture removed: anchor at its test size 5.25 ->
+    // 5.05 s, against 4.8 s without the staircase retries)
+    const std::size_t far0 = far_faces(out);
+    const bool clean = far0 == 0 && low_cells(out).first == 0;
+    auto best = clean ? std::make_tuple(std::size_t(0), std::size_t(0), std::size_t(0), 0.0) : score(out, far0);
+    std::size_t tries = 1, choice = 0;
+    for(std::size_t k = 1; k < std::size(gaps) && std::get<1>(best) <= max_low_cells &&
+                           (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<2>(best) > 0); ++k) {
+      // (the budget: its first capture is counted here, its retries in `mesh_once()`)
+      if(capture_cost > retry_left) break;
+      retry_left -= capture_cost;
+      HexMesh trial;
+      Hex_meshing_3::Meshing_statistics st;
+      std::vector<Hex_meshing_3::Region_leak> lk;
+      const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk);
+      ++tries;
+      if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
+      if(trial.number_of_cells() == 0) continue;
+      const auto sc = score(trial, far_faces(trial));
+      if(sc < best) { best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k; }
     }
-    if(!compared) {   // (the first capture's retries, where the staircases were not compared)
-      retry_captures(made[0]);
-      status = made[0].status;
-    }
-  } catch(...) {
-    out = std::move(made[kept].mesh);
-    throw;
+    stats.staircase_tries = tries;
+    stats.staircase_gap = gaps[choice];
   }
-  Staircase& k = made[kept];
-  out = std::move(k.mesh);
-  k.stats.staircase_tries = made.size();
-  k.stats.staircase_gap = k.gap;
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::leaks_t>::value) {
     auto it = get_parameter(np, HNP::leaks);
-    for(const Hex_meshing_3::Region_leak& l : k.leaks) *it++ = l;
+    for(const Hex_meshing_3::Region_leak& l : leaks) *it++ = l;
   }
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::statistics_t>::value)
-    *get_parameter(np, HNP::statistics) = k.stats;
+    *get_parameter(np, HNP::statistics) = stats;
   return status;
 }
 
