@@ -214,9 +214,10 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *       the cells below 0.3, the worst of them, the faults the removal found (each removed cell
  *       leaves a staircase face), the minimum; the meshes of the staircases by the faults left,
  *       the cells below 0.3, the faces beyond a quarter surface size, the minimum; the best is
- *       kept (deterministic). No retry with `polish_worst_cells(false)`, nor where the first
- *       capture leaves more than 10 cells below 0.3 (the grid is then too coarse for the shape,
- *       and other paths do not lift them). 0: never. A cancellation during a retry keeps the best
+ *       kept (deterministic). No retry with `polish_worst_cells(false)`; no retry of a grid's
+ *       capture where the first leaves more than 10 cells below 0.3 (other paths do not lift that
+ *       many; the closer staircases still run, and lift them on anchor and elephant at diagonal /
+ *       80). 0: never. A cancellation during a retry keeps the best
  *       mesh so far. `Meshing_statistics::capture_tries`, `capture_choice`, `staircase_tries` and
  *       `staircase_gap` say what was done. A thinner buffer reaches some corners and concave
  *       curves that a thicker one does not, and loses others: on the 15 test surfaces at their
@@ -336,8 +337,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     return std::make_tuple(residual, low, low > 0 ? std::get<2>(f) : 0.0, found, std::get<2>(f));
   };
   // Other paths lift a few cells below 0.3, not many: where the first capture leaves more than
-  // `max_low_cells` of them, the grid is too coarse for the shape there and the retries are not
-  // run (anchor at diagonal / 40: 87 cells below 0.3, four more captures took 1.5 s to 7.6 s for
+  // `max_low_cells` of them, the retries of that grid's capture are not run (the staircase
+  // retries below still are: a closer staircase may lift them) (anchor at diagonal / 40: 87 cells below 0.3, four more captures took 1.5 s to 7.6 s for
   // a minimum of 0.032 -> 0.035; elephant, diagonal / 40 at the surface, --thin-cells 5: 47
   // cells, 5.7 s -> 26 s for 0.176 -> 0.192). Where they helped, the first capture left 1 to 8
   // (bunny 8: 0.176 -> 0.304; fandisk_crack 2, anchor 1 at 0.75 times the test sizes). Its
