@@ -24,7 +24,8 @@ int main(int argc, char** argv)
     HM::Surface_domain_3<K> domain(input);                         // reads, welds, builds the inside test
     CGAL::Hex_mesh_criteria_3<K> criteria(size, surface_size);     // cell size, size at the surface
     HM::Hex_mesh_3<K> mesh;
-    const HM::Status status = CGAL::make_hex_mesh_3(domain, criteria, mesh);
+    // (with TBB, a retry of the boundary capture may run ahead on another thread: same mesh)
+    const HM::Status status = CGAL::make_hex_mesh_3<CGAL::Parallel_if_available_tag>(domain, criteria, mesh);
     std::cout << HM::status_name(status) << ": " << mesh.number_of_cells() << " hexahedra, "
               << mesh.number_of_vertices() << " vertices, " << mesh.hanging_nodes.size() << " hanging nodes\n";
     if(!HM::IO::write_VTU(output, mesh)) { std::cerr << "cannot write " << output << "\n"; return EXIT_FAILURE; }

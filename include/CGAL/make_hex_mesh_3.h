@@ -16,14 +16,23 @@
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/tags.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <iterator>
 #include <memory>
 #include <optional>
 #include <tuple>
+#include <type_traits>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
+#endif
 
 namespace CGAL {
 
@@ -45,6 +54,34 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
   o.contrast = 3;
   return o;
 }
+
+namespace internal {
+// The visitor of a capture run ahead on another thread (`make_hex_mesh_3()` with a parallel
+// tag): it reports nothing and stops the capture once `stop` is set.
+struct Ahead_visitor
+{
+  const std::atomic<bool>* stop;
+  void on_phase_begin(const char*, std::size_t) {}
+  void on_phase_end(const char*) {}
+  bool go_further(double) { return !stop->load(std::memory_order_relaxed); }
+};
+// where the captures run ahead: TBB's tasks, or (sequential) none
+#ifdef CGAL_LINKED_WITH_TBB
+typedef tbb::task_group Ahead_group;
+inline bool ahead_threads()
+{
+  return (std::min)(std::size_t(tbb::this_task_arena::max_concurrency()),
+                    tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)) > 1;
+}
+#else
+struct Ahead_group
+{
+  template <typename F> void run(F&& f) { f(); }
+  void wait() {}
+};
+inline bool ahead_threads() { return false; }
+#endif
+} // namespace internal
 } // namespace Hex_meshing_3
 
 /*!
@@ -107,6 +144,16 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  *   fails the guards, it is tried with the other vertices of its cells improved once after it, the
  *   guards then holding on all their cells.
  *
+ * Retries run ahead with `ConcurrencyTag` `CGAL::Parallel_tag` (or `CGAL::Parallel_if_available_tag`
+ * where TBB is linked) and more than one thread in TBB's arena: while a capture runs, the one the
+ * retries of `capture_retry_cells` would run after it is started on another thread, and used only
+ * if they do run it. The captures and the rules that choose among them are the same, so the
+ * mesh is the same whatever the number of threads (a cancellation aside: a capture run ahead is
+ * not polled by the visitor, and one that is not used is stopped). Two captures run at once
+ * then, and the domain's search tree is kept until they end. Nothing runs ahead on meshes beyond
+ * the retries' budget (the motorBike).
+ *
+ * \tparam ConcurrencyTag `CGAL::Sequential_tag` (default) or `CGAL::Parallel_tag`
  * \tparam MeshDomain model of `HexMeshDomain_3` (e.g. `Hex_meshing_3::Surface_domain_3<K>`)
  * \tparam Criteria   model of `HexMeshCriteria_3` (e.g. `Hex_mesh_criteria_3<K>`)
  * \tparam HexMesh    model of `HexMesh_3` (e.g. `Hex_meshing_3::Hex_mesh_3<K>`)
@@ -248,12 +295,17 @@ typename Feature_curves_3<GeomTraits>::Options default_feature_curve_options(con
  * \throws Hex_meshing_3::Input_error when the box, sizes or seed are unusable: a seed outside the
  *         box, inside a body, or in a cell cut by the surface; an empty box; sizes too small.
  */
-template <typename MeshDomain, typename Criteria, typename HexMesh,
+template <typename ConcurrencyTag = Sequential_tag, typename MeshDomain, typename Criteria, typename HexMesh,
           typename CGAL_NP_TEMPLATE_PARAMETERS>
 Hex_meshing_3::Status
 make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out,
                 const CGAL_NP_CLASS& np = parameters::default_values())
 {
+#ifndef CGAL_LINKED_WITH_TBB
+  static_assert(!std::is_convertible<ConcurrencyTag, Parallel_tag>::value,
+                "make_hex_mesh_3: Parallel_tag needs TBB (CGAL_LINKED_WITH_TBB); use Parallel_if_available_tag");
+#endif
+  const bool parallel = std::is_convertible<ConcurrencyTag, Parallel_tag>::value && Hex_meshing_3::internal::ahead_threads();
   using parameters::choose_parameter;
   using parameters::get_parameter;
   using parameters::get_parameter_reference;
@@ -353,9 +405,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   }
 
   // One mesh: the grid, its staircase kept `gap` cell sizes off the surface, and its capture (with
-  // the retries of `capture_retry_cells`).
+  // the retries of `capture_retry_cells`; with a parallel tag, one of them at a time runs ahead,
+  // see above).
   auto mesh_once = [&](double gap, HexMesh& out, Hex_meshing_3::Meshing_statistics& stats,
                        std::vector<Hex_meshing_3::Region_leak>& leaks) {
+    Hex_meshing_3::internal::Ahead_group workers;
+    std::atomic<bool> stop_ahead{false};
     Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
     Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor, body_fitted ? gap : 0.0);
     stats = mesher.statistics();
@@ -411,6 +466,54 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       std::unique_ptr<HexMesh> grid;
       if(may_retry) grid = std::make_unique<HexMesh>(out);
       const Hex_meshing_3::Meshing_statistics stats0 = stats;
+      // Retries run ahead (with a parallel tag, see above): while a capture runs here, the next
+      // retry of the sequence runs on another thread (`ahead`); the loop below takes it if it
+      // reaches that retry, else it is stopped. The domain's search tree is built before and
+      // kept until they end (a capture frees it at its end).
+      const bool run_ahead = parallel && may_retry;
+      if(run_ahead) {
+        copt.release_search_tree = false;
+        domain.closest_point(Point_3(0, 0, 0));
+      }
+      auto retry_options = [&](std::size_t choice) {
+        typename Capture::Options o = options_of(choice);
+        o.remove_foam_faults = false;
+        return o;
+      };
+      struct Ahead { Choice choice; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; };
+      std::unique_ptr<Ahead> ahead;
+      auto launch = [&](std::size_t choice) {
+        if(!run_ahead || choice >= sequence.size()) return;
+        ahead.reset(new Ahead{sequence[choice], *grid, stats0, false});
+        Ahead* a = ahead.get();
+        const typename Capture::Options o = retry_options(choice);
+        workers.run([a, o, &domain, features, &stop_ahead]() {
+          Hex_meshing_3::internal::Ahead_visitor av{&stop_ahead};
+          a->ran = Capture(a->mesh, domain, features, a->stats, o).run(av);
+        });
+      };
+      auto drop_ahead = [&]() {
+        if(!ahead) return;
+        stop_ahead = true;
+        workers.wait();
+        stop_ahead = false;
+        ahead.reset();
+      };
+      // (an exception leaving here stops it too)
+      struct Ahead_guard
+      {
+        std::unique_ptr<Ahead>& a;
+        std::atomic<bool>& stop;
+        Hex_meshing_3::internal::Ahead_group& group;
+        ~Ahead_guard()
+        {
+          if(!a) return;
+          stop = true;
+          try { group.wait(); } catch(...) {}
+          stop = false;
+        }
+      } ahead_guard{ahead, stop_ahead, workers};
+      if(may_retry) launch(1);
       Capture first_capture(out, domain, features, stats, options_of(0));
       bool ran = first_capture.run(visitor);
       stats.capture_tries = 1;
@@ -431,11 +534,23 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
                                     (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<3>(best) > 0); ++choice) {
           if(capture_cost > retry_left) break;   // (the budget is spent)
           retry_left -= capture_cost;
-          typename Capture::Options o = options_of(choice);
-          o.remove_foam_faults = false;
-          HexMesh trial(*grid);
-          Hex_meshing_3::Meshing_statistics st = stats0;
-          const bool ok = Capture(trial, domain, features, st, o).run(visitor);
+          HexMesh trial;
+          Hex_meshing_3::Meshing_statistics st;
+          bool ok;
+          const Choice& c = sequence[choice];
+          if(ahead && ahead->choice.pillows == c.pillows && ahead->choice.turn == c.turn && ahead->choice.snap == c.snap) {
+            workers.wait();
+            trial = std::move(ahead->mesh);
+            st = ahead->stats;
+            ok = ahead->ran;
+            ahead.reset();
+          } else {
+            drop_ahead();
+            if(capture_cost <= retry_left) launch(choice + 1);   // (if the budget has room for it)
+            trial = *grid;
+            st = stats0;
+            ok = Capture(trial, domain, features, st, retry_options(choice)).run(visitor);
+          }
           ++stats.capture_tries;
           if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
           const auto f = faults(trial);
@@ -450,6 +565,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
             stats.capture_choice = choice;
           }
         }
+        drop_ahead();
         if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<3>(best) > 0) {
           typename Capture::Options o = options_of(stats.capture_choice);
           o.remove_foam_faults = true;
@@ -465,6 +581,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           stats.capture_tries = tries;
         }
       }
+      drop_ahead();
+      if(run_ahead) domain.release_search_tree();
       if(!ran) status = Hex_meshing_3::Status::CANCELED;
       visitor.on_phase_end("capture");
       stats.kept_cells = out.number_of_cells();

@@ -491,6 +491,21 @@ def main():
     for f in ["points", "faces", "owner", "neighbour", "boundary"]:
         check(filecmp.cmp(os.path.join(d, "case1/constant/polyMesh", f), os.path.join(d, "case2/constant/polyMesh", f),
                           shallow=False), f"polyMesh/{f} identical")
+    # whatever the number of threads: elephant-with-holes at the default sizes runs the capture twice
+    # and the staircase three times (with two threads, the retry is run ahead while the first
+    # capture runs: the same mesh)
+    for k in (1, 2):
+        r = run([args.hexmesh, os.path.join(args.data, "elephant-with-holes.off"), "-o", os.path.join(d, f"t{k}.msh"),
+                 "--report", os.path.join(d, f"t{k}.json"), "-q", "--threads", str(k)])
+        check(r.returncode == 0, f"hexmesh --threads {k} runs")
+    jt = [json.load(open(os.path.join(d, f"t{k}.json"))) for k in (1, 2)]
+    check(jt[0]["options"]["threads"] == 1 and jt[1]["options"]["threads"] == min(2, os.cpu_count() or 1),
+          f"the report's threads: {jt[0]['options']['threads']}, {jt[1]['options']['threads']}")
+    check(jt[1]["boundary"]["capture_tries"] >= 2 and jt[1]["boundary"]["staircase_tries"] >= 2,
+          f"elephant-with-holes retries the capture ({jt[1]['boundary']['capture_tries']} captures, "
+          f"{jt[1]['boundary']['staircase_tries']} staircases)")
+    check(filecmp.cmp(os.path.join(d, "t1.msh"), os.path.join(d, "t2.msh"), shallow=False),
+          "--threads 1 and --threads 2: MSH files identical")
 
     # errors and exit codes
     print("[errors]")

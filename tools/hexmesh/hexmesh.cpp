@@ -28,6 +28,10 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+#endif
 
 #include "html_report.h"
 
@@ -222,6 +226,7 @@ int main(int argc, char** argv)
   bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = true;
   std::size_t capture_retry_cells = 200000;
   int smoothing_sweeps = 8;
+  int threads = 0;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
   app.add_option("-o,--output", outputs, "output: FILE.vtu, FILE.msh, FILE.mesh, or a directory for an OpenFOAM case "
                                          "(repeatable)")->required();
@@ -280,6 +285,9 @@ int main(int argc, char** argv)
                  "0: never (default 200000)");
   app.add_option("--smoothing-sweeps", smoothing_sweeps, "the boundary capture's main optimisation sweeps at most: more "
                  "raise the worst cells a little, at a cost in time (default 8)")->check(CLI::Range(1, 1000));
+  app.add_option("--threads", threads, "threads at most (0: all of the machine's): a retry of the boundary capture "
+                 "runs ahead on another thread while the one before it runs; the mesh is the same whatever the number "
+                 "(default 0)")->check(CLI::Range(0, 4096));
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-size", patch_size_rules, "REGEX=H[:HFINE]: cut cells meeting the input parts whose whole name "
@@ -352,6 +360,15 @@ int main(int argc, char** argv)
     std::cerr << "hexmesh: " << e.what() << "\n" << "Run 'hexmesh --help' for the options.\n";
     return USAGE;
   }
+  // (--threads: TBB's limit for the whole run)
+#ifdef CGAL_LINKED_WITH_TBB
+  std::optional<tbb::global_control> thread_limit;
+  if(threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const std::size_t used_threads = (std::min)(std::size_t(tbb::this_task_arena::max_concurrency()),
+                                              tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+#else
+  const std::size_t used_threads = 1;
+#endif
 
   // refuse to overwrite before any work; an input is never an output
   {
@@ -501,14 +518,14 @@ int main(int argc, char** argv)
     // (CGAL's `visitor` must come last: its pack only chains CGAL's own names)
     HM::Meshing_statistics stats;
     if(has_seed)
-      status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
+      status = CGAL::make_hex_mesh_3<CGAL::Parallel_if_available_tag>(domain, criteria, mesh, HP::region_seed(seed).meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
                                                                .feature_pillows(feature_pillows)
                                                                .capture_retry_cells(capture_retry_cells).smoothing_sweeps(smoothing_sweeps)
                                                                .visitor(std::ref(progress)));
     else
-      status = CGAL::make_hex_mesh_3(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
+      status = CGAL::make_hex_mesh_3<CGAL::Parallel_if_available_tag>(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
                                                                .feature_pillows(feature_pillows)
@@ -716,6 +733,7 @@ int main(int argc, char** argv)
                       {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
                       {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
                       {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells}, {"smoothing_sweeps", smoothing_sweeps},
+                      {"threads", used_threads},
                       {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict},

@@ -486,6 +486,7 @@ public:
     double feature_joint_quality = 0.35;    ///< the same for an unsnapped curve or corner vertex held on its feature (a feature regained at the price of the cells' quality: not below min(its quality, this))
     double sheet_cap_quality = 0.2;         ///< a sheet's cap vertex goes onto the sheet's border if no cell falls below min(its quality, this) (and none turns concave, no face split worsens)
     double fidelity_distance = 0.2;         ///< ... over the top faces whose centre is farther than this (x the smallest local size of their corners) from the surface
+    bool release_search_tree = true;        ///< the cleanup frees the domain's search tree (false where another capture of the same domain runs at the same time: `make_hex_mesh_3()` with a parallel tag)
     bool remove_foam_faults = true;         ///< the cleanup removes the buffer cells that checkMesh -allGeometry would find concave or at a face failing the tet decomposition (on the points of the OpenFOAM export)
   };
 
@@ -576,7 +577,7 @@ public:
     release_work_data();
     // no surface query follows: the domain's search tree (a fifth of the cleanup's memory peak on
     // motorBike) is rebuilt by the next query made of the domain
-    d.release_search_tree();
+    if(opt.release_search_tree) d.release_search_tree();
     remove_invalid_buffer_cells({});
     substep("cleanup.removal");
     m.points.resize(P.size());
