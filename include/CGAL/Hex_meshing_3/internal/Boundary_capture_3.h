@@ -72,6 +72,9 @@
 #if defined(__GLIBC__)
 #include <malloc.h>   // malloc_trim
 #endif
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace CGAL {
 namespace Hex_meshing_3 {
@@ -98,6 +101,38 @@ inline int hex_pyramid_qualities(const Vec3* x, double* out, double stop = -std:
     const Vec3 fc = mul(add(add(x[f[0]], x[f[1]]), add(x[f[2]], x[f[3]])), 0.25);
     const Vec3 u = sub(cc, fc);
     const double uu = dot(u, u);
+#if defined(__SSE2__)
+    // two triangles at a time (SSE2, in every x86-64): the same operations in the same order as
+    // the scalar code below, so the same values to the bit; 1.4 times faster alone (its square
+    // roots and divisions in pairs), fandisk at diagonal / 80 on one thread 20.4 -> 17.3 s (this
+    // function had a fifth of its samples). (The scaled Jacobians the same way: 1.06 times, not kept.)
+    double ax[4], ay[4], az[4], aa[4], v[4];
+    for(int i = 0; i < 4; ++i) {
+      const Vec3 a = sub(x[f[i]], fc);
+      ax[i] = a[0];
+      ay[i] = a[1];
+      az[i] = a[2];
+      aa[i] = dot(a, a);
+    }
+    const __m128d U0 = _mm_set1_pd(u[0]), U1 = _mm_set1_pd(u[1]), U2 = _mm_set1_pd(u[2]), UU = _mm_set1_pd(uu);
+    for(int p = 0; p < 4; p += 2) {
+      // lanes: the triangles at corners p and p + 1 (a = corner, b = next corner)
+      const int q = (p + 2) & 3;
+      const __m128d Ax = _mm_loadu_pd(ax + p), Ay = _mm_loadu_pd(ay + p), Az = _mm_loadu_pd(az + p);
+      const __m128d Bx = _mm_set_pd(ax[q], ax[p + 1]), By = _mm_set_pd(ay[q], ay[p + 1]), Bz = _mm_set_pd(az[q], az[p + 1]);
+      const __m128d Cx = _mm_sub_pd(_mm_mul_pd(Ay, Bz), _mm_mul_pd(Az, By));
+      const __m128d Cy = _mm_sub_pd(_mm_mul_pd(Az, Bx), _mm_mul_pd(Ax, Bz));
+      const __m128d Cz = _mm_sub_pd(_mm_mul_pd(Ax, By), _mm_mul_pd(Ay, Bx));
+      const __m128d D = _mm_add_pd(_mm_add_pd(_mm_mul_pd(Cx, U0), _mm_mul_pd(Cy, U1)), _mm_mul_pd(Cz, U2));
+      const __m128d L = _mm_sqrt_pd(_mm_mul_pd(_mm_mul_pd(_mm_loadu_pd(aa + p), _mm_set_pd(aa[q], aa[p + 1])), UU));
+      const __m128d Q = _mm_div_pd(_mm_xor_pd(D, _mm_set1_pd(-0.0)), L);   // (-D / l)
+      _mm_storeu_pd(v + p, _mm_and_pd(_mm_cmpgt_pd(L, _mm_setzero_pd()), Q));   // (0 unless l > 0)
+    }
+    for(int i = 0; i < 4; ++i) {
+      out[n] = v[i];
+      if(out[n++] < stop) return n;
+    }
+#else
     Vec3 a[4];
     double aa[4];
     for(int i = 0; i < 4; ++i) { a[i] = sub(x[f[i]], fc); aa[i] = dot(a[i], a[i]); }
@@ -107,6 +142,7 @@ inline int hex_pyramid_qualities(const Vec3* x, double* out, double stop = -std:
       out[n] = l > 0 ? -dot(cross(a[i], a[j]), u) / l : 0.0;
       if(out[n++] < stop) return n;
     }
+#endif
   }
   // a cube: a, b = half diagonals of a face (orthogonal, length sqrt(2)/2), u = half an edge,
   // normal to the face: |a x b| |u| / (|a| |b| |u|) = 1
