@@ -2587,19 +2587,23 @@ private:
         Kind goal;
         int r = -1;
         const Vec3 x0 = P[v];
-        if(kind[v] == RELEASED || kind[v] == CAP) {
+        const bool to_surface = kind[v] == RELEASED || kind[v] == CAP;
+        if(to_surface) {
           if(td.second != std::size_t(-1)) continue;   // its surface entry comes first
+        } else if(!(kind[v] == SURFACE && td.second != std::size_t(-1))) continue;
+        // one that found no step, none of whose inputs (its place, the corners of its cells and
+        // their hanging nodes' masters) moved since, finds none again (checked before its target
+        // is looked for: on the motorBike most of the 20,000 vertices of the rounds are such)
+        if(reattach_failed[v] != 0 && last_input_move(v) <= reattach_failed[v]) continue;
+        if(to_surface) {
           r = region_of_point(x0);
           target = clamp_planes(v, closest_on_surface(x0, r));
           goal = SURFACE;
-        } else if(kind[v] == SURFACE && td.second != std::size_t(-1)) {
+        } else {
           const Lost& l = unsnapped_list[td.second];
           goal = l.kind;
           target = goal == CORNER ? l.where : clamp_planes(v, closest_on_curve(x0, curve_of[v]));
-        } else continue;
-        // one that found no step, none of whose inputs (its place, the corners of its cells and
-        // their hanging nodes' masters) moved since, finds none again
-        if(reattach_failed[v] != 0 && last_input_move(v) <= reattach_failed[v]) continue;
+        }
         affected_cells(v, cells);
         q_old.resize(cells.size());
         for(std::size_t i = 0; i < cells.size(); ++i) q_old[i] = cell_quality(cells[i]);
