@@ -492,10 +492,11 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           a->ran = Capture(a->mesh, domain, features, a->stats, o).run(av);
         });
       };
+      // (what it threw, if anything, is dropped with it: the captures run here do not throw it)
       auto drop_ahead = [&]() {
         if(!ahead) return;
         stop_ahead = true;
-        workers.wait();
+        try { workers.wait(); } catch(...) {}
         stop_ahead = false;
         ahead.reset();
       };
