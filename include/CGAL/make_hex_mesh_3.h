@@ -65,13 +65,14 @@ struct Ahead_visitor
   void on_phase_end(const char*) {}
   bool go_further(double) { return !stop->load(std::memory_order_relaxed); }
 };
-// where the captures run ahead: TBB's tasks, or (sequential) none
+// where the captures run ahead: TBB's tasks, or (sequential) none; and how many threads TBB
+// would run them on (its arena, within `tbb::global_control`'s limit: `hexmesh --threads`)
 #ifdef CGAL_LINKED_WITH_TBB
 typedef tbb::task_group Ahead_group;
-inline bool ahead_threads()
+inline std::size_t available_threads()
 {
   return (std::min)(std::size_t(tbb::this_task_arena::max_concurrency()),
-                    tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)) > 1;
+                    tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 }
 #else
 struct Ahead_group
@@ -79,7 +80,7 @@ struct Ahead_group
   template <typename F> void run(F&& f) { f(); }
   void wait() {}
 };
-inline bool ahead_threads() { return false; }
+inline std::size_t available_threads() { return 1; }
 #endif
 } // namespace internal
 } // namespace Hex_meshing_3
@@ -305,7 +306,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   static_assert(!std::is_convertible<ConcurrencyTag, Parallel_tag>::value,
                 "make_hex_mesh_3: Parallel_tag needs TBB (CGAL_LINKED_WITH_TBB); use Parallel_if_available_tag");
 #endif
-  const bool parallel = std::is_convertible<ConcurrencyTag, Parallel_tag>::value && Hex_meshing_3::internal::ahead_threads();
+  const bool parallel = std::is_convertible<ConcurrencyTag, Parallel_tag>::value && Hex_meshing_3::internal::available_threads() > 1;
   using parameters::choose_parameter;
   using parameters::get_parameter;
   using parameters::get_parameter_reference;
@@ -451,7 +452,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // the ratio 5 by default, then 2.5, 3.75, 1.67. Pillows lift the worst cells along convex
       // curves (the cube 0.57 -> 0.88, anchor 0.317 -> 0.334) but leave cells below 0.3 at some
       // (cube_nonmanifold's fin, fandisk_crack): there the captures without them are kept.
-      struct Choice { bool pillows; double turn, snap; };
+      struct Choice
+      {
+        bool pillows;
+        double turn, snap;
+        bool operator==(const Choice& o) const { return pillows == o.pillows && turn == o.turn && snap == o.snap; }
+      };
       std::vector<Choice> sequence;
       if(copt.feature_pillows) sequence.push_back({true, 1, 1});
       for(const Choice& c : {Choice{false, 1, 1}, Choice{false, 1, 2}, Choice{false, 0.75, 1}, Choice{false, 1, 3}})
@@ -503,17 +509,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // (an exception leaving here stops it too)
       struct Ahead_guard
       {
-        std::unique_ptr<Ahead>& a;
-        std::atomic<bool>& stop;
-        Hex_meshing_3::internal::Ahead_group& group;
-        ~Ahead_guard()
-        {
-          if(!a) return;
-          stop = true;
-          try { group.wait(); } catch(...) {}
-          stop = false;
-        }
-      } ahead_guard{ahead, stop_ahead, workers};
+        decltype(drop_ahead)& drop;
+        ~Ahead_guard() { drop(); }
+      } ahead_guard{drop_ahead};
       if(may_retry) launch(1);
       Capture first_capture(out, domain, features, stats, options_of(0));
       bool ran = first_capture.run(visitor);
@@ -538,11 +536,10 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           HexMesh trial;
           Hex_meshing_3::Meshing_statistics st;
           bool ok;
-          const Choice& c = sequence[choice];
-          if(ahead && ahead->choice.pillows == c.pillows && ahead->choice.turn == c.turn && ahead->choice.snap == c.snap) {
+          if(ahead && ahead->choice == sequence[choice]) {
             workers.wait();
             trial = std::move(ahead->mesh);
-            st = ahead->stats;
+            st = std::move(ahead->stats);
             ok = ahead->ran;
             ahead.reset();
           } else {

@@ -30,7 +30,6 @@
 #include <nlohmann/json.hpp>
 #ifdef CGAL_LINKED_WITH_TBB
 #include <tbb/global_control.h>
-#include <tbb/task_arena.h>
 #endif
 
 #include "html_report.h"
@@ -364,11 +363,8 @@ int main(int argc, char** argv)
 #ifdef CGAL_LINKED_WITH_TBB
   std::optional<tbb::global_control> thread_limit;
   if(threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const std::size_t used_threads = (std::min)(std::size_t(tbb::this_task_arena::max_concurrency()),
-                                              tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-#else
-  const std::size_t used_threads = 1;
 #endif
+  const std::size_t used_threads = HM::internal::available_threads();
 
   // refuse to overwrite before any work; an input is never an output
   {
