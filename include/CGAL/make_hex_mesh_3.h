@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <iterator>
 #include <memory>
@@ -405,6 +406,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     features = own.get();
   }
 
+  // every capture and every staircase mesh, in order (`Meshing_statistics::captures`, `staircases`)
+  std::vector<Hex_meshing_3::Capture_record> capture_log;
+  std::vector<Hex_meshing_3::Staircase_record> staircase_log;
+  auto seconds_since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   // One mesh: the grid, its staircase kept `gap` cell sizes off the surface, and its capture (with
   // the retries of `capture_retry_cells`; with a parallel tag, one of them at a time runs ahead,
   // see above).
@@ -469,6 +476,28 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         o.snap_weight *= sequence[choice].snap;
         return o;
       };
+      // a capture's record in `capture_log` (the counts: `evaluate()`)
+      auto log_capture = [&](std::size_t choice, const HexMesh& mesh, double seconds, bool ahead_run) {
+        Hex_meshing_3::Capture_record r;
+        r.staircase_gap = gap;
+        r.choice = choice;
+        r.feature_pillows = sequence[choice].pillows;
+        const typename Capture::Options o = options_of(choice);
+        r.paths_ratio = o.snap_weight > 0 ? o.turn_penalty / o.snap_weight : 0.0;
+        r.ran_ahead = ahead_run;
+        r.seconds = seconds;
+        r.cells = mesh.number_of_cells();
+        capture_log.push_back(r);
+        return capture_log.size() - 1;
+      };
+      auto evaluate = [&](std::size_t i, std::size_t found, const auto& f) {
+        Hex_meshing_3::Capture_record& r = capture_log[i];
+        r.evaluated = true;
+        r.openfoam_faults_found = found;
+        r.openfoam_faults_left = std::get<0>(f);
+        r.cells_below_0_3 = std::get<1>(f);
+        r.min_scaled_jacobian = -std::get<2>(f);
+      };
       std::unique_ptr<HexMesh> grid;
       if(may_retry) grid = std::make_unique<HexMesh>(out);
       const Hex_meshing_3::Meshing_statistics stats0 = stats;
@@ -486,16 +515,18 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         o.remove_foam_faults = false;
         return o;
       };
-      struct Ahead { Choice choice; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; };
+      struct Ahead { Choice choice; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
       std::unique_ptr<Ahead> ahead;
       auto launch = [&](std::size_t choice) {
         if(!run_ahead || choice >= sequence.size()) return;
-        ahead.reset(new Ahead{sequence[choice], *grid, stats0, false});
+        ahead.reset(new Ahead{sequence[choice], *grid, stats0, false, 0.0});
         Ahead* a = ahead.get();
         const typename Capture::Options o = retry_options(choice);
         workers.run([a, o, &domain, features, &stop_ahead]() {
           Hex_meshing_3::internal::Ahead_visitor av{&stop_ahead};
+          const auto t0 = std::chrono::steady_clock::now();
           a->ran = Capture(a->mesh, domain, features, a->stats, o).run(av);
+          a->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         });
       };
       // (what it threw, if anything, is dropped with it: the captures run here do not throw it)
@@ -514,7 +545,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       } ahead_guard{drop_ahead};
       if(may_retry) launch(1);
       Capture first_capture(out, domain, features, stats, options_of(0));
+      const auto first_t0 = std::chrono::steady_clock::now();
       bool ran = first_capture.run(visitor);
+      std::size_t kept_log = log_capture(0, out, seconds_since(first_t0), false);
       stats.capture_tries = 1;
       if(capture_cost == 0) capture_cost = (std::max)(out.number_of_cells(), std::size_t(1));
       if(ran && may_retry) {
@@ -522,6 +555,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         // (as `faults()` counts them on the same capture without the removal); its cells below
         // 0.3 and minimum after the removal
         const auto f0 = faults(out);
+        evaluate(kept_log, first_capture.foam_faults_found, f0);
         auto best = rank(std::get<0>(f0), first_capture.foam_faults_found, f0);
         // Where the first capture made no pillow it was the capture without them, which is not run
         // again; after one with pillows, the one without runs whatever the count of cells below 0.3,
@@ -536,26 +570,32 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           HexMesh trial;
           Hex_meshing_3::Meshing_statistics st;
           bool ok;
+          std::size_t log_i;
           if(ahead && ahead->choice == sequence[choice]) {
             workers.wait();
             trial = std::move(ahead->mesh);
             st = std::move(ahead->stats);
             ok = ahead->ran;
+            log_i = log_capture(choice, trial, ahead->seconds, true);
             ahead.reset();
           } else {
             drop_ahead();
             if(capture_cost <= retry_left) launch(choice + 1);   // (if the budget has room for it)
             trial = *grid;
             st = stats0;
+            const auto t0 = std::chrono::steady_clock::now();
             ok = Capture(trial, domain, features, st, retry_options(choice)).run(visitor);
+            log_i = log_capture(choice, trial, seconds_since(t0), false);
           }
           ++stats.capture_tries;
           if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
           const auto f = faults(trial);
+          evaluate(log_i, std::get<0>(f), f);
           const auto r = rank(0, std::get<0>(f), f);
           if(choice == 1 && first_had_pillows) hopeless = std::get<1>(f) > max_low_cells;
           if(r < best) {
             const std::size_t tries = stats.capture_tries;
+            kept_log = log_i;
             best = r;
             out = std::move(trial);
             stats = st;
@@ -570,7 +610,12 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           HexMesh trial(*grid);
           Hex_meshing_3::Meshing_statistics st = stats0;
           const std::size_t tries = stats.capture_tries + 1, choice = stats.capture_choice;
-          if(Capture(trial, domain, features, st, o).run(visitor)) {
+          const auto t0 = std::chrono::steady_clock::now();
+          const bool rerun_ok = Capture(trial, domain, features, st, o).run(visitor);
+          const std::size_t rerun_log = log_capture(choice, trial, seconds_since(t0), false);
+          capture_log[rerun_log].rerun = true;
+          if(rerun_ok) {
+            kept_log = rerun_log;
             out = std::move(trial);
             stats = st;
             stats.capture_choice = choice;
@@ -580,6 +625,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         }
       }
       drop_ahead();
+      if(ran) capture_log[kept_log].kept = true;
       if(run_ahead) domain.release_search_tree();
       if(!ran) status = Hex_meshing_3::Status::CANCELED;
       visitor.on_phase_end("capture");
@@ -607,7 +653,18 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   static constexpr double gaps[] = {0.4, 0.25, 0.2};
   std::vector<Hex_meshing_3::Region_leak> leaks;
   Hex_meshing_3::Meshing_statistics stats;
+  // (a staircase mesh's record: its gap, its captures, its time)
+  auto log_staircase = [&](double gap, std::size_t captures_before, std::chrono::steady_clock::time_point t0) {
+    Hex_meshing_3::Staircase_record r;
+    r.gap = gap;
+    r.captures = capture_log.size() - captures_before;
+    r.seconds = seconds_since(t0);
+    staircase_log.push_back(r);
+  };
+  const auto first_t0 = std::chrono::steady_clock::now();
   Hex_meshing_3::Status status = mesh_once(gaps[0], out, stats, leaks);
+  if(body_fitted) log_staircase(gaps[0], 0, first_t0);
+  std::size_t kept_staircase = 0;
   stats.staircase_tries = 1;
   stats.staircase_gap = gaps[0];
   // (`capture_cost` is 0 where no capture ran; where the budget left has no room for another
@@ -629,8 +686,17 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // counting its OpenFOAM faults, which its capture removed: anchor at its test size 5.25 ->
     // 5.05 s, against 4.8 s without the staircase retries)
     const std::size_t far0 = far_faces(out);
-    const bool clean = far0 == 0 && low_cells(out).first == 0;
-    auto best = clean ? std::make_tuple(std::size_t(0), std::size_t(0), std::size_t(0), 0.0) : score(out, far0);
+    const auto low0 = low_cells(out);
+    const bool clean = far0 == 0 && low0.first == 0;
+    auto best = clean ? std::make_tuple(std::size_t(0), std::size_t(0), std::size_t(0), -low0.second) : score(out, far0);
+    auto evaluate = [&](Hex_meshing_3::Staircase_record& r, const decltype(best)& sc) {
+      r.evaluated = true;
+      r.openfoam_faults = std::get<0>(sc);
+      r.cells_below_0_3 = std::get<1>(sc);
+      r.far_faces = std::get<2>(sc);
+      r.min_scaled_jacobian = -std::get<3>(sc);
+    };
+    evaluate(staircase_log.front(), best);
     std::size_t tries = 1, choice = 0;
     for(std::size_t k = 1; k < std::size(gaps) &&
                            (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<2>(best) > 0); ++k) {
@@ -640,16 +706,26 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       HexMesh trial;
       Hex_meshing_3::Meshing_statistics st;
       std::vector<Hex_meshing_3::Region_leak> lk;
+      const std::size_t before = capture_log.size();
+      const auto t0 = std::chrono::steady_clock::now();
       const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk);
+      log_staircase(gaps[k], before, t0);
       ++tries;
       if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
       if(trial.number_of_cells() == 0) continue;
       const auto sc = score(trial, far_faces(trial));
-      if(sc < best) { best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k; }
+      evaluate(staircase_log.back(), sc);
+      if(sc < best) {
+        best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k;
+        kept_staircase = staircase_log.size() - 1;
+      }
     }
     stats.staircase_tries = tries;
     stats.staircase_gap = gaps[choice];
   }
+  if(!staircase_log.empty()) staircase_log[kept_staircase].kept = true;
+  stats.captures = std::move(capture_log);
+  stats.staircases = std::move(staircase_log);
   if constexpr(!is_default_parameter<CGAL_NP_CLASS, HNP::leaks_t>::value) {
     auto it = get_parameter(np, HNP::leaks);
     for(const Hex_meshing_3::Region_leak& l : leaks) *it++ = l;

@@ -506,6 +506,16 @@ def main():
           f"{jt[1]['boundary']['staircase_tries']} staircases)")
     check(filecmp.cmp(os.path.join(d, "t1.msh"), os.path.join(d, "t2.msh"), shallow=False),
           "--threads 1 and --threads 2: MSH files identical")
+    # the report's log of the captures: the same captures with the same results for any thread
+    # count; with two threads (on two cores) some ran ahead, with one none did
+    def outcomes(jr):
+        return [(c["staircase_gap"], c["choice"], c["rerun"], c["cells"], c["evaluated"], c.get("cells_below_0_3"),
+                 c.get("min_scaled_jacobian"), c["kept"]) for c in jr["boundary"]["captures"]]
+    check(outcomes(jt[0]) == outcomes(jt[1]) and len(outcomes(jt[0])) >= 3,
+          f"--threads 1 and 2: the same {len(outcomes(jt[0]))} captures with the same outcomes")
+    ahead_ = [sum(c["ran_ahead"] for c in jr["boundary"]["captures"]) for jr in jt]
+    check(ahead_[0] == 0 and (ahead_[1] > 0) == (jt[1]["options"]["threads"] > 1),
+          f"captures run ahead: {ahead_[0]} with one thread, {ahead_[1]} with {jt[1]['options']['threads']}")
 
     # errors and exit codes
     print("[errors]")

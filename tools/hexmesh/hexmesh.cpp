@@ -45,6 +45,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <regex>
 #include <sstream>
@@ -538,6 +539,25 @@ int main(int argc, char** argv)
         std::cerr << "; the mesh made " << stats.staircase_tries << " times, the one with the staircase " << stats.staircase_gap
                   << " cell sizes off the surface kept";
       std::cerr << "\n";
+      // the retries' search, capture by capture (where there was one)
+      if(stats.captures.size() > 1) {
+        std::size_t k = 0;
+        for(const CGAL::Hex_meshing_3::Capture_record& r : stats.captures) {
+          std::cerr << "hexmesh: capture " << ++k << " of " << stats.captures.size() << ": staircase " << r.staircase_gap
+                    << ", " << (r.feature_pillows ? "pillows, " : "") << "paths " << std::setprecision(3) << r.paths_ratio
+                    << (r.rerun ? ", rerun removing its OpenFOAM faults" : "") << (r.ran_ahead ? ", run ahead" : "") << ": ";
+          if(r.evaluated)
+            std::cerr << r.openfoam_faults_found << " OpenFOAM faults found, " << r.openfoam_faults_left << " left, "
+                      << r.cells_below_0_3 << " cells below 0.3, min " << r.min_scaled_jacobian << ", ";
+          std::cerr << r.seconds << " s" << (r.kept ? " (kept for its staircase)" : "") << std::setprecision(6) << "\n";
+        }
+        for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases)
+          if(r.evaluated)
+            std::cerr << "hexmesh: staircase " << r.gap << ": " << r.captures << " captures, " << r.far_faces << " faces beyond 1/4 surface size, "
+                      << r.openfoam_faults << " OpenFOAM faults, " << r.cells_below_0_3 << " cells below 0.3, min "
+                      << std::setprecision(3) << r.min_scaled_jacobian << ", " << r.seconds << " s" << std::setprecision(6)
+                      << (r.kept ? " (kept)" : "") << "\n";
+      }
     }
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
       std::cerr << "hexmesh: " << stats.trimmed_cells << " cells trimmed (fingers and plates one cell thick)"
@@ -904,6 +924,35 @@ int main(int argc, char** argv)
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
                            {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", first_100(stats.unreached_vertices)}};
           j["boundary"]["removed_buffer_cells_first_100"] = first_100(stats.removed_buffer_cell_centres);
+          {
+            nlohmann::ordered_json caps = nlohmann::ordered_json::array(), stairs = nlohmann::ordered_json::array();
+            for(const CGAL::Hex_meshing_3::Capture_record& r : stats.captures) {
+              nlohmann::ordered_json c = {{"staircase_gap", r.staircase_gap}, {"choice", r.choice}, {"feature_pillows", r.feature_pillows},
+                                          {"paths_ratio", r.paths_ratio}, {"rerun", r.rerun}, {"ran_ahead", r.ran_ahead},
+                                          {"seconds", r.seconds}, {"cells", r.cells}, {"evaluated", r.evaluated}};
+              if(r.evaluated) {
+                c["openfoam_faults_found"] = r.openfoam_faults_found;
+                c["openfoam_faults_left"] = r.openfoam_faults_left;
+                c["cells_below_0_3"] = r.cells_below_0_3;
+                c["min_scaled_jacobian"] = r.min_scaled_jacobian;
+              }
+              c["kept"] = r.kept;
+              caps.push_back(c);
+            }
+            for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases) {
+              nlohmann::ordered_json c = {{"gap", r.gap}, {"captures", r.captures}, {"seconds", r.seconds}, {"evaluated", r.evaluated}};
+              if(r.evaluated) {
+                c["far_faces"] = r.far_faces;
+                c["openfoam_faults"] = r.openfoam_faults;
+                c["cells_below_0_3"] = r.cells_below_0_3;
+                c["min_scaled_jacobian"] = r.min_scaled_jacobian;
+              }
+              c["kept"] = r.kept;
+              stairs.push_back(c);
+            }
+            j["boundary"]["captures"] = caps;
+            j["boundary"]["staircases"] = stairs;
+          }
           j["boundary"]["curve_turns"] = stats.curve_turns.size();
           j["boundary"]["curve_turns_first_100"] = first_100(stats.curve_turns);
           j["boundary"]["missed_curves_first_100"] = first_100(stats.missed_curves);

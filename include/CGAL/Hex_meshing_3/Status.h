@@ -97,6 +97,47 @@ private:
 
 /*!
  * \ingroup PkgHexMeshing3Functions
+ * \brief one boundary capture run by `make_hex_mesh_3()` (`Meshing_statistics::captures`): its
+ * staircase, its settings, what it cost and, where the retries may run, what it left.
+ */
+struct Capture_record
+{
+  double staircase_gap = 0.4;        ///< the staircase's distance from the surface, in cell sizes
+  std::size_t choice = 0;            ///< its place in the sequence of captures (as `Meshing_statistics::capture_choice`)
+  bool feature_pillows = false;      ///< asked for pillows along convex feature curves
+  double paths_ratio = 0;            ///< the feature paths' ratio of turn penalty to snap weight
+  bool rerun = false;                ///< the kept retry made again with the removal of its OpenFOAM faults
+  bool ran_ahead = false;            ///< run on another thread while the one before it ran
+  double seconds = 0;                ///< wall seconds of the capture (on its own thread)
+  std::size_t cells = 0;             ///< cells of the mesh it gave
+  bool evaluated = false;            ///< the counts below were computed (where retries may follow)
+  std::size_t openfoam_faults_found = 0;   ///< cells concave for OpenFOAM, faces failing its tet decomposition, cells of small determinant, before any removal
+  std::size_t openfoam_faults_left = 0;    ///< the same, left in the mesh (the first capture removes its faults, retries do not)
+  std::size_t cells_below_0_3 = 0;   ///< cells below a scaled Jacobian of 0.3
+  double min_scaled_jacobian = 0;    ///< the minimum scaled Jacobian
+  bool kept = false;                 ///< the capture kept for its staircase (`rerun` replaces it where there is one)
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Functions
+ * \brief one mesh made by `make_hex_mesh_3()` with its staircase at a given distance from the
+ * surface (`Meshing_statistics::staircases`), as the staircase retries compared them.
+ */
+struct Staircase_record
+{
+  double gap = 0.4;                  ///< the staircase's distance from the surface, in cell sizes
+  std::size_t captures = 0;          ///< the captures run for it (reruns included)
+  bool evaluated = false;            ///< the counts below were computed (where staircase retries may follow)
+  std::size_t far_faces = 0;         ///< boundary faces farther than a quarter of the surface size from the input
+  std::size_t openfoam_faults = 0;   ///< the faults OpenFOAM's checks would find, as for `Capture_record` (not counted, 0, where none of the others is found)
+  std::size_t cells_below_0_3 = 0;   ///< cells below a scaled Jacobian of 0.3
+  double min_scaled_jacobian = 0;    ///< the minimum scaled Jacobian
+  double seconds = 0;                ///< wall seconds from its grid to its kept capture
+  bool kept = false;                 ///< the mesh returned
+};
+
+/*!
+ * \ingroup PkgHexMeshing3Functions
  * \brief what `make_hex_mesh_3()` did, for reports (named parameter `statistics`).
  */
 struct Meshing_statistics
@@ -166,6 +207,11 @@ struct Meshing_statistics
   /// faces and cells as OpenFOAM will). A part that did not run is missing; the parts of a step
   /// sum to at most its time.
   std::vector<std::pair<std::string, double>> capture_substep_seconds;
+  /// every boundary capture run, in order (the retries' search: which settings ran, what each
+  /// cost and left; see `make_hex_mesh_3()`); the statistics above are the kept capture's
+  std::vector<Capture_record> captures;
+  /// every mesh made with its staircase at a distance from the surface, in order
+  std::vector<Staircase_record> staircases;
 };
 
 /*!
