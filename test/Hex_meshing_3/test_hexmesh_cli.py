@@ -516,6 +516,24 @@ def main():
     ahead_ = [sum(c["ran_ahead"] for c in jr["boundary"]["captures"]) for jr in jt]
     check(ahead_[0] == 0 and (ahead_[1] > 0) == (jt[1]["options"]["threads"] > 1),
           f"captures run ahead: {ahead_[0]} with one thread, {ahead_[1]} with {jt[1]['options']['threads']}")
+    # --all-capture-retries: every capture of the sequence at each of the three staircases; the
+    # captures the default rules ran are among them, with the same outcomes (the same grid, the
+    # same settings: the same capture)
+    r = run([args.hexmesh, os.path.join(args.data, "elephant-with-holes.off"), "-o", os.path.join(d, "all.msh"),
+             "--report", os.path.join(d, "all.json"), "-q", "--threads", "1", "--all-capture-retries"])
+    check(r.returncode == 0, "hexmesh --all-capture-retries runs")
+    ja = json.load(open(os.path.join(d, "all.json")))
+    sa, ca = ja["boundary"]["staircases"], ja["boundary"]["captures"]
+    def key(c):
+        return (c["staircase_gap"], c["choice"])
+    full = {key(c): c for c in ca if not c["rerun"]}
+    same = all(key(c) in full and all(full[key(c)].get(f) == c.get(f) for f in
+               ("cells", "evaluated", "openfoam_faults_found", "cells_below_0_3", "min_scaled_jacobian"))
+               for c in jt[0]["boundary"]["captures"] if not c["rerun"])
+    check(ja["options"]["all_capture_retries"] is True and len(sa) == 3 and
+          all(x["captures"] >= 4 for x in sa) and len(full) > len(jt[0]["boundary"]["captures"]) and same,
+          f"--all-capture-retries: {len(ca)} captures in {len(sa)} staircases "
+          f"({[x['captures'] for x in sa]}), the default's {len(jt[0]['boundary']['captures'])} among them with the same outcomes")
 
     # errors and exit codes
     print("[errors]")

@@ -225,6 +225,7 @@ int main(int argc, char** argv)
   std::size_t max_cells = 0;
   bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = true;
   std::size_t capture_retry_cells = 200000;
+  bool all_capture_retries = false;
   int smoothing_sweeps = 8;
   int threads = 0;
   app.add_option("input", inputs, "triangulated surface files: .off, .obj, .stl, .ply, optionally .gz")->required();
@@ -283,6 +284,10 @@ int main(int argc, char** argv)
                  "of 0.4; each retry counts the first capture's cells against the budget and runs only if they fit (a mesh "
                  "of N cells: at most budget / N retries); the best mesh is kept (faults, cells below 0.3, far faces); "
                  "0: never (default 200000)");
+  app.add_flag("--all-capture-retries", all_capture_retries, "run every retry of --capture-retry-cells whatever its "
+               "budget and however good the captures before it (every capture of the sequence at each of the three "
+               "staircase distances, up to 18) and keep the best by the same rules: the best mesh the retries can give, "
+               "for that much time (the report's boundary.captures lists them)");
   app.add_option("--smoothing-sweeps", smoothing_sweeps, "the boundary capture's main optimisation sweeps at most: more "
                  "raise the worst cells a little, at a cost in time (default 8)")->check(CLI::Range(1, 1000));
   app.add_option("--threads", threads, "threads at most (0: all of the machine's): a retry of the boundary capture "
@@ -519,14 +524,16 @@ int main(int argc, char** argv)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
                                                                .feature_pillows(feature_pillows)
-                                                               .capture_retry_cells(capture_retry_cells).smoothing_sweeps(smoothing_sweeps)
+                                                               .capture_retry_cells(capture_retry_cells).all_capture_retries(all_capture_retries)
+                                                               .smoothing_sweeps(smoothing_sweeps)
                                                                .visitor(std::ref(progress)));
     else
       status = CGAL::make_hex_mesh_3<CGAL::Parallel_if_available_tag>(domain, criteria, mesh, HP::meshing_box(box).max_cells(cell_limit)
                                                                .leaks(std::back_inserter(leaks)).statistics(&stats)
                                                                .body_fitted(!staircase).feature_curves(&features)
                                                                .feature_pillows(feature_pillows)
-                                                               .capture_retry_cells(capture_retry_cells).smoothing_sweeps(smoothing_sweeps)
+                                                               .capture_retry_cells(capture_retry_cells).all_capture_retries(all_capture_retries)
+                                                               .smoothing_sweeps(smoothing_sweeps)
                                                                .visitor(std::ref(progress)));
     if(!quiet && !staircase) {
       std::cerr << "hexmesh: boundary: " << stats.staircase_removed_cells << " staircase cells removed for room, "
@@ -748,7 +755,7 @@ int main(int argc, char** argv)
       j["options"] = {{"size", size}, {"surface_size", surface_size}, {"curvature_size", curvature_size},
                       {"curvature_angle", curvature_angle}, {"thin_cells", thin_cells},
                       {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
-                      {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells}, {"smoothing_sweeps", smoothing_sweeps},
+                      {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells}, {"all_capture_retries", all_capture_retries}, {"smoothing_sweeps", smoothing_sweeps},
                       {"threads", used_threads},
                       {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},

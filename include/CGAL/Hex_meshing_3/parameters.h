@@ -27,6 +27,7 @@ enum feature_curves_t { feature_curves };
 enum feature_pillows_t { feature_pillows };
 enum polish_worst_cells_t { polish_worst_cells };
 enum capture_retry_cells_t { capture_retry_cells };
+enum all_capture_retries_t { all_capture_retries };
 enum smoothing_sweeps_t { smoothing_sweeps };
 } // namespace internal_np
 
@@ -75,6 +76,10 @@ struct Named_parameters : CGAL::Named_function_parameters<T, Tag, Base>
   template <typename V>
   Named_parameters<V, internal_np::capture_retry_cells_t, Named_parameters>
   capture_retry_cells(const V& v) const { return { v, *this }; }
+
+  template <typename V>
+  Named_parameters<V, internal_np::all_capture_retries_t, Named_parameters>
+  all_capture_retries(const V& v) const { return { v, *this }; }
 
   template <typename V>
   Named_parameters<V, internal_np::smoothing_sweeps_t, Named_parameters>
@@ -131,6 +136,12 @@ Named_parameters<V, internal_np::polish_worst_cells_t> polish_worst_cells(const 
 /// 200,000 by default
 template <typename V>
 Named_parameters<V, internal_np::capture_retry_cells_t> capture_retry_cells(const V& v) { return { v }; }
+
+/// every retry of `capture_retry_cells` is run, whatever the budget and however good the captures
+/// before it: every capture of the sequence at each of the three staircases (up to 18 captures),
+/// the best kept by the same rules (`bool`; see `make_hex_mesh_3()`); false by default
+template <typename V>
+Named_parameters<V, internal_np::all_capture_retries_t> all_capture_retries(const V& v) { return { v }; }
 
 /// the capture's main optimisation sweeps over the buffer's vertices at most (`int`, >= 1; see
 /// `make_hex_mesh_3()`); 8 by default
