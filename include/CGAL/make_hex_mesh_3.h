@@ -534,11 +534,11 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         ahead.reset(new Ahead{sequence[choice], *grid, stats0, false, 0.0});
         Ahead* a = ahead.get();
         const typename Capture::Options o = retry_options(choice);
-        workers.run([a, o, &domain, features, &stop_ahead]() {
+        workers.run([a, o, &domain, features, &stop_ahead, seconds_since]() {
           Hex_meshing_3::internal::Ahead_visitor av{&stop_ahead};
           const auto t0 = std::chrono::steady_clock::now();
           a->ran = Capture(a->mesh, domain, features, a->stats, o).run(av);
-          a->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          a->seconds = seconds_since(t0);
         });
       };
       // (what it threw, if anything, is dropped with it: the captures run here do not throw it)

@@ -389,6 +389,21 @@ def patch_sides(case, side):
     return res
 
 
+def vtu_min_sj(path):
+    """the minimum scaled Jacobian of the hexahedra of a VTU file, from its points (numpy)"""
+    import meshio
+    import numpy as np
+    mv = meshio.read(path)
+    x = mv.points[mv.cells_dict["hexahedron"]]
+    worst = 1.0
+    for i, (a, b, c) in enumerate([(1, 3, 4), (2, 0, 5), (3, 1, 6), (0, 2, 7), (7, 5, 0), (4, 6, 1), (5, 7, 2), (6, 4, 3)]):
+        e1, e2, e3 = x[:, a] - x[:, i], x[:, b] - x[:, i], x[:, c] - x[:, i]
+        d = np.einsum("ij,ij->i", np.cross(e1, e2), e3)
+        n = np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1) * np.linalg.norm(e3, axis=1)
+        worst = min(worst, float(np.min(np.where(n > 0, d / np.where(n > 0, n, 1), 0.0))))
+    return worst
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--hexmesh", required=True)
@@ -973,18 +988,6 @@ def main():
         # evaluated it, as computed here from the VTU's points: the report's qualities are those
         # of the OpenFOAM case's points when one is asked, the hanging nodes bulged, eight 0.350 ->
         # 0.327)
-        def vtu_min_sj(path):
-            import meshio
-            import numpy as np
-            mv = meshio.read(path)
-            x = mv.points[mv.cells_dict["hexahedron"]]
-            worst = 1.0
-            for i, (a, b, c) in enumerate([(1, 3, 4), (2, 0, 5), (3, 1, 6), (0, 2, 7), (7, 5, 0), (4, 6, 1), (5, 7, 2), (6, 4, 3)]):
-                e1, e2, e3 = x[:, a] - x[:, i], x[:, b] - x[:, i], x[:, c] - x[:, i]
-                d = np.einsum("ij,ij->i", np.cross(e1, e2), e3)
-                n = np.linalg.norm(e1, axis=1) * np.linalg.norm(e2, axis=1) * np.linalg.norm(e3, axis=1)
-                worst = min(worst, float(np.min(np.where(n > 0, d / np.where(n > 0, n, 1), 0.0))))
-            return worst
         caps_, st_ = b_["captures"], b_["staircases"]
         kept_st = [i for i, x in enumerate(st_) if x["kept"]]
         ok_ = len(st_) == b_["staircase_tries"] and len(kept_st) == 1 and sum(x["captures"] for x in st_) == len(caps_)
