@@ -514,7 +514,7 @@ public:
     double loosen_corner = 0.1;             ///< ... and with its corner vertices free to leave their corner's point by at most this (x local size; 0: never)
     double second_polish_pyramid_weight = 2;   ///< the second polish counts the face pyramids at this many times their value (1: no second polish)
     int fidelity_passes = 3;                ///< sweeps of `fidelity_polish()` (0: none)
-    int turn_passes = 2;                    ///< sweeps of `turn_polish()` (0: none)
+    int turn_passes = 6;                    ///< sweeps of `turn_polish()`, until one moves nothing (0: none)
     bool turn_joint = true;                 ///< ... where a turn vertex's step alone fails the guards, try it with the other vertices of its cells improved once (`joint_turn_move()`)
     double turn_distance = 0.1;             ///< ... which brings the vertices where a chain turns inside a face no closer than this to their curve (x local size)
     int joint_passes = 10;                  ///< improve() passes over a released vertex's neighbours while it is held on the surface (0: no joint moves)
