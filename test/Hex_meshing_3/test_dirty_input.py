@@ -1005,6 +1005,19 @@ def main():
                         for vsj in [vtu_min_sj(case + ".vtu")] for r_ in (ks, kept_c[0]))))
         check(ok_, f"{stem}: the log of {len(caps_)} capture(s) and {len(st_)} staircase(s) agrees with the counts and the "
                    f"mesh (kept capture {kept_c[0] if kept_c else None})")
+        # the report's qualities are the case's points' (hanging nodes bulged) where the mesh has
+        # hanging nodes; its scaled Jacobian on the mesh's points, and the VTU's cell data, are
+        # those of the VTU's own points (numpy, from its points and hexahedra)
+        vsj_ = vtu_min_sj(case + ".vtu")
+        mv_ = meshio.read(case + ".vtu")
+        vtu_data_ = float(np.min(np.concatenate([d for cb, d in zip(mv_.cells, mv_.cell_data["scaled_jacobian"])
+                                                 if cb.type == "hexahedron"])))
+        hanging_ = j["counts"]["hanging_nodes"] > 0
+        mp_ = q["mesh_points_scaled_jacobian"]["min"]
+        check(q["measured_on"] == ("openfoam_case_points" if hanging_ else "mesh_points") and
+              abs(mp_ - vsj_) < 1e-9 and abs(vtu_data_ - vsj_) < 1e-9 and (hanging_ or mp_ == sj),
+              f"{stem}: qualities measured on {q['measured_on']} (min {sj:.4f}); on the mesh's points min {mp_:.4f}, "
+              f"the VTU's cell data {vtu_data_:.4f}, its points {vsj_:.4f}")
         # the report's seconds per phase: a phase run once per mesh made is summed, so the phases
         # together take no longer than the whole run, and most of it (0.92 to 0.99 of it on the 15
         # files; where the last mesh's phases overwrote the others', bunny's came to 0.25 of it)

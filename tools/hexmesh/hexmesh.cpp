@@ -674,8 +674,20 @@ int main(int argc, char** argv)
     if(has_bulged) mesh.points.swap(bulged);
     HM::Mesh_quality q = HM::compute_quality(mesh, pm);
     if(has_bulged) mesh.points.swap(bulged);
+    // the other outputs (VTU, MSH, Medit) hold the points as they are: their cells' scaled
+    // Jacobians, which the capture's retries judged, are said too (and the VTU carries them)
+    std::vector<double> mesh_points_sj;
+    if(has_bulged) {
+      mesh_points_sj.resize(mesh.hexahedra.size());
+      for(std::size_t c = 0; c < mesh.hexahedra.size(); ++c) {
+        std::array<K::Point_3, 8> p;
+        for(int k = 0; k < 8; ++k) p[std::size_t(k)] = mesh.points[mesh.hexahedra[c][std::size_t(k)]];
+        mesh_points_sj[c] = HM::scaled_jacobian(p);
+      }
+    }
     const double t_quality = since(t);
     const auto sj = HM::Mesh_quality::range(q.scaled_jacobian);
+    const auto sj_mesh_points = HM::Mesh_quality::range(has_bulged ? mesh_points_sj : q.scaled_jacobian);
     const auto no = HM::Mesh_quality::range(q.non_orthogonality);
     const auto sk = HM::Mesh_quality::range(q.skewness);
     const auto ar = HM::Mesh_quality::range(q.aspect_ratio);
@@ -692,6 +704,11 @@ int main(int argc, char** argv)
     if(!reports.empty()) {
       auto rj = [](const HM::Mesh_quality::Range& r) { return nlohmann::ordered_json{{"min", r.min}, {"mean", r.mean}, {"max", r.max}}; };
       jquality = {{"scaled_jacobian", rj(sj)}, {"non_orthogonality", rj(no)}, {"skewness", rj(sk)}, {"aspect_ratio", rj(ar)}};
+      // which points these are: an OpenFOAM case's (its hanging nodes bulged, as checkMesh sees
+      // them) where one is written and the mesh has hanging nodes, else the mesh's; and the
+      // scaled Jacobian on the mesh's points (those of the VTU, MSH and Medit outputs) in both cases
+      jquality["measured_on"] = has_bulged ? "openfoam_case_points" : "mesh_points";
+      jquality["mesh_points_scaled_jacobian"] = rj(sj_mesh_points);
       add_quality_details(jquality, mesh, pm, q);
       // as checkMesh -allGeometry counts them on the OpenFOAM export (hanging nodes bulged)
       jquality["concave_cells"] = foam_concave;
@@ -706,7 +723,7 @@ int main(int argc, char** argv)
     for(const std::string& o : outputs) {
       bool ok = false;
       switch(output_kind(o)) {
-        case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, q.scaled_jacobian); break;
+        case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, has_bulged ? mesh_points_sj : q.scaled_jacobian); break;
         case Output_kind::MSH: ok = HM::IO::write_MSH(o, mesh); break;
         case Output_kind::MEDIT: ok = HM::IO::write_Medit(o, mesh); break;
         // the points with bulged hanging nodes are already in `bulged` (if there are any)
@@ -730,6 +747,9 @@ int main(int argc, char** argv)
       std::printf("cells %zu  vertices %zu  hanging nodes %zu  boundary faces %zu  polyhedral faces %zu  volume %.9g\n",
                   mesh.number_of_cells(), mesh.number_of_vertices(), mesh.hanging_nodes.size(), nboundary, pm.faces.size(), volume);
       std::printf("scaled Jacobian    min %.6g  mean %.6g  max %.6g\n", sj.min, sj.mean, sj.max);
+      if(has_bulged)
+        std::printf("                   (on the OpenFOAM case's points, hanging nodes bulged; on the mesh's, as the other outputs hold them: min %.6g  mean %.6g)\n",
+                    sj_mesh_points.min, sj_mesh_points.mean);
       std::printf("non-orthogonality  min %.6g  mean %.6g  max %.6g  (degrees, internal faces)\n", no.min, no.mean, no.max);
       std::printf("skewness           min %.6g  mean %.6g  max %.6g\n", sk.min, sk.mean, sk.max);
       std::printf("aspect ratio       min %.6g  mean %.6g  max %.6g\n", ar.min, ar.mean, ar.max);
