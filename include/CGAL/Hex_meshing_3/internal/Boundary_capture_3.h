@@ -516,6 +516,7 @@ public:
     int fidelity_passes = 3;                ///< sweeps of `fidelity_polish()` (0: none)
     int turn_passes = 6;                    ///< sweeps of `turn_polish()`, until one moves nothing (0: none)
     bool turn_joint = true;                 ///< ... where a turn vertex's step alone fails the guards, try it with the other vertices of its cells improved once (`joint_turn_move()`)
+    double turn_joint_far = 0.3;            ///< ... after the first two sweeps, only for turn vertices still farther than this from their curve (x local size)
     double turn_distance = 0.1;             ///< ... which brings the vertices where a chain turns inside a face no closer than this to their curve (x local size)
     int joint_passes = 10;                  ///< improve() passes over a released vertex's neighbours while it is held on the surface (0: no joint moves)
     double joint_quality = 0.25;            ///< ... kept if no cell of theirs falls below min(its quality, this)
@@ -3030,7 +3031,10 @@ private:
         }
         if(!done) move(v, x0);
         else stamp_move(v);
-        if(!done && opt.turn_joint && !steps.empty()) done = joint_turn_move(v, x0, steps, offset_cap);
+        // (joint moves are most of the polish's time: after two sweeps, only where the vertex is
+        // still far enough off its curve for its face to crease off it)
+        if(!done && opt.turn_joint && !steps.empty() && (pass < 2 || d0 > opt.turn_joint_far * local_size(v)))
+          done = joint_turn_move(v, x0, steps, offset_cap);
         if(done) ++moved;
         else turn_failed[v] = clock;
       }
