@@ -280,7 +280,9 @@ CAPTURE_RETRIED = {"elephant", "elephant-with-holes", "fandisk_crack"}
 # 0.81 before and 0.42 - 0.68 after, fandisk's 0.47 - 2.13 before and 0.52 - 0.94 after)
 # (unsnapped feature vertices put back in joint moves: anchor 0.33 / 0.51 -> 0.26 / 0.51; over the
 # 8 shifts anchor's input->mesh 0.23 - 0.62 -> 0.23 - 0.36, fandisk's 0.60 - 1.23 -> 0.59 - 0.71)
-FEATURE_FIDELITY_FLOOR = {"anchor": (0.28, 0.53), "anchor_dupflip": (0.28, 0.53), "t20_part": (0.75, 0.8),
+# (the turn polish in sweeps until nothing moves, stop 57: anchor 0.26 / 0.51 -> 0.24 / 0.47, its
+# input -> mesh guard the goal again; fandisk 0.66 / 0.92 -> 0.65 / 0.92, t20_part 0.70 / 0.78 -> 0.70 / 0.75)
+FEATURE_FIDELITY_FLOOR = {"anchor": (0.25, 0.5), "anchor_dupflip": (0.25, 0.5), "t20_part": (0.75, 0.8),
                           "fandisk": (0.75, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
@@ -295,7 +297,8 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.28, 0.53), "anchor_dupflip": (0.28, 0.53)
 # (flat cells counted as inverted: anchor 0.26 / 0.51, fandisk 0.27 / 0.92)
 # (unsnapped feature vertices put back in joint moves: fandisk 0.27 / 0.92 -> 0.23 / 0.92; over the 8
 # shifts its input->mesh 0.26 - 0.61 -> 0.22 - 0.36)
-FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.28, 0.53), "anchor_dupflip": (0.28, 0.53), "t20_part": (0.4, 0.7),
+# (stop 57: anchor 0.26 / 0.51 -> 0.22 / 0.47, fandisk 0.23 / 0.92 -> 0.22 / 0.92, t20_part 0.35 / 0.54)
+FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.25, 0.5), "anchor_dupflip": (0.25, 0.5), "t20_part": (0.4, 0.7),
                                    "fandisk": (0.25, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)

@@ -2977,7 +2977,11 @@ private:
   // guards (`Move_guard`) and leaves no top face of it farther off the surface than max(before,
   // `fidelity_distance`) (`top_face_offset()`; without it rotor got 4 more faces beyond s/4).
   // (Also the curve vertices put back on the surface where their face would be flat.)
-  // Where a step alone fails the guards, it is tried with the vertices around (`joint_turn_move()`).
+  // Where a step alone fails the guards, it is tried with the vertices around (`joint_turn_move()`;
+  // after the first two sweeps only for vertices still beyond `turn_joint_far` local sizes of their
+  // curve). The sweeps go on until one moves nothing (`turn_passes` at most): a vertex that failed
+  // is tried again once a vertex its guards read has moved (stop 57: anchor's mesh creases
+  // within 0.47 surface sizes of its sharp edges instead of 0.51).
   template <typename Visitor>
   void turn_polish(Visitor& visitor)
   {
