@@ -676,15 +676,7 @@ int main(int argc, char** argv)
     if(has_bulged) mesh.points.swap(bulged);
     // the other outputs (VTU, MSH, Medit) hold the points as they are: their cells' scaled
     // Jacobians, which the capture's retries judged, are said too (and the VTU carries them)
-    std::vector<double> mesh_points_sj;
-    if(has_bulged) {
-      mesh_points_sj.resize(mesh.hexahedra.size());
-      for(std::size_t c = 0; c < mesh.hexahedra.size(); ++c) {
-        std::array<K::Point_3, 8> p;
-        for(int k = 0; k < 8; ++k) p[std::size_t(k)] = mesh.points[mesh.hexahedra[c][std::size_t(k)]];
-        mesh_points_sj[c] = HM::scaled_jacobian(p);
-      }
-    }
+    const std::vector<double> mesh_points_sj = has_bulged ? HM::cell_scaled_jacobians(mesh) : std::vector<double>();
     const double t_quality = since(t);
     const auto sj = HM::Mesh_quality::range(q.scaled_jacobian);
     const auto sj_mesh_points = HM::Mesh_quality::range(has_bulged ? mesh_points_sj : q.scaled_jacobian);

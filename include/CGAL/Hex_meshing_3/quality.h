@@ -600,6 +600,22 @@ void face_non_orthogonality_and_skewness(const std::vector<Point_3>& points, con
 
 /*!
  * \ingroup PkgHexMeshing3Quality
+ * \brief the scaled Jacobian of each hexahedron of `mesh` (`scaled_jacobian()`), in cell order.
+ */
+template <typename HexMesh>
+std::vector<double> cell_scaled_jacobians(const HexMesh& mesh)
+{
+  std::vector<double> sj(mesh.hexahedra.size());
+  for(std::size_t c = 0; c < sj.size(); ++c) {
+    std::array<typename HexMesh::Point_3, 8> p;
+    for(int k = 0; k < 8; ++k) p[std::size_t(k)] = mesh.points[mesh.hexahedra[c][std::size_t(k)]];
+    sj[c] = scaled_jacobian(p);
+  }
+  return sj;
+}
+
+/*!
+ * \ingroup PkgHexMeshing3Quality
  * \brief computes the quality of `mesh`; `pm` is its polyhedral form (`Polyhedral_mesh_3::build()`).
  */
 template <typename HexMesh>
@@ -607,12 +623,7 @@ Mesh_quality compute_quality(const HexMesh& mesh, const Polyhedral_mesh_3& pm)
 {
   using namespace internal;
   Mesh_quality q;
-  q.scaled_jacobian.resize(mesh.hexahedra.size());
-  for(std::size_t c = 0; c < mesh.hexahedra.size(); ++c) {
-    std::array<typename HexMesh::Point_3, 8> p;
-    for(int k = 0; k < 8; ++k) p[k] = mesh.points[mesh.hexahedra[c][k]];
-    q.scaled_jacobian[c] = scaled_jacobian(p);
-  }
+  q.scaled_jacobian = cell_scaled_jacobians(mesh);
   // (the cells' geometry only: the faces' centres and areas, two thirds of its memory, are
   // computed where needed)
   OpenFOAM_geometry g;

@@ -40,14 +40,7 @@ bool write_VTU(const std::string& filename, const HexMesh& mesh, std::vector<dou
   static_assert(sizeof(double) == 8, "IEEE doubles expected");
   const std::uint64_t np = mesh.points.size(), nh = mesh.hexahedra.size();
   const std::uint64_t nq = with_boundary ? mesh.boundary_faces.size() : 0, nc = nh + nq;
-  if(sj.size() != nh) {
-    sj.resize(nh);
-    for(std::size_t c = 0; c < nh; ++c) {
-      std::array<typename HexMesh::Point_3, 8> p;
-      for(int k = 0; k < 8; ++k) p[k] = mesh.points[mesh.hexahedra[c][k]];
-      sj[c] = scaled_jacobian(p);
-    }
-  }
+  if(sj.size() != nh) sj = cell_scaled_jacobians(mesh);
   std::ofstream os(filename, std::ios::binary);
   if(!os) return false;
   struct Block { std::string type, name, extra; std::uint64_t bytes; };
