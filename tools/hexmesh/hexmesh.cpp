@@ -676,10 +676,11 @@ int main(int argc, char** argv)
     if(has_bulged) mesh.points.swap(bulged);
     // the other outputs (VTU, MSH, Medit) hold the points as they are: their cells' scaled
     // Jacobians, which the capture's retries judged, are said too (and the VTU carries them)
-    const std::vector<double> mesh_points_sj = has_bulged ? HM::cell_scaled_jacobians(mesh) : std::vector<double>();
+    const std::vector<double> bulged_mesh_points_sj = has_bulged ? HM::cell_scaled_jacobians(mesh) : std::vector<double>();
+    const std::vector<double>& mesh_points_sj = has_bulged ? bulged_mesh_points_sj : q.scaled_jacobian;
     const double t_quality = since(t);
     const auto sj = HM::Mesh_quality::range(q.scaled_jacobian);
-    const auto sj_mesh_points = HM::Mesh_quality::range(has_bulged ? mesh_points_sj : q.scaled_jacobian);
+    const auto sj_mesh_points = HM::Mesh_quality::range(mesh_points_sj);
     const auto no = HM::Mesh_quality::range(q.non_orthogonality);
     const auto sk = HM::Mesh_quality::range(q.skewness);
     const auto ar = HM::Mesh_quality::range(q.aspect_ratio);
@@ -715,7 +716,7 @@ int main(int argc, char** argv)
     for(const std::string& o : outputs) {
       bool ok = false;
       switch(output_kind(o)) {
-        case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, has_bulged ? mesh_points_sj : q.scaled_jacobian); break;
+        case Output_kind::VTU: ok = HM::IO::write_VTU(o, mesh, mesh_points_sj); break;
         case Output_kind::MSH: ok = HM::IO::write_MSH(o, mesh); break;
         case Output_kind::MEDIT: ok = HM::IO::write_Medit(o, mesh); break;
         // the points with bulged hanging nodes are already in `bulged` (if there are any)
