@@ -25,7 +25,7 @@ no face-tet failure). The last lines count the files with no boundary face beyon
 surface size of the input (the fidelity goal), and the faces beyond it by cause over all files.
 
 Usage: benchmark/Hex_meshing_3/capture_table.py [--hexmesh PATH] [--keep DIR] [--test-sizes]
-                                                [--size-factor F] [-- hexmesh options...]
+                                                [--size-factor F] [--only STEM,...] [-- hexmesh options...]
 e.g.   benchmark/Hex_meshing_3/capture_table.py -- --thin-cells 5
        benchmark/Hex_meshing_3/capture_table.py --test-sizes --size-factor 0.75
 """
@@ -82,6 +82,7 @@ def main():
     ap.add_argument("--keep", help="directory for the meshes and reports (default: a temporary one)")
     ap.add_argument("--test-sizes", action="store_true", help="each file with the options of the tests")
     ap.add_argument("--size-factor", type=float, help="surface size = this x the default")
+    ap.add_argument("--only", help="comma-separated file stems (default: every file)")
     args = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
     per_file = test_sizes() if args.test_sizes else {}
     if args.size_factor is not None and (args.size_factor <= 0 or "--surface-size" in extra or "--size" in extra):
@@ -96,12 +97,17 @@ def main():
         rep = os.path.join(work, stem + ".json")
         opts = list(per_file.get(stem, []))
         if args.size_factor is not None:
-            opts += ["--surface-size", repr(args.size_factor * default_surface_size(os.path.join(DATA, name)))]
+            if "--surface-size" in opts:   # (the test's own sizes, H[:HFINE], scaled)
+                k = opts.index("--surface-size") + 1
+                opts[k] = ":".join(repr(args.size_factor * float(x)) for x in opts[k].split(":"))
+            else:
+                opts += ["--surface-size", repr(args.size_factor * default_surface_size(os.path.join(DATA, name)))]
         r = subprocess.run([args.hexmesh, os.path.join(DATA, name), "-o", os.path.join(work, stem + ".vtu"),
                             "--report", rep, "--force", "-q"] + opts + extra, capture_output=True, text=True)
         return stem, (json.load(open(rep)) if r.returncode == 0 else None), r.stderr[-300:]
 
-    names = sorted(n for n in os.listdir(DATA) if n.endswith(".off"))
+    names = sorted(n for n in os.listdir(DATA) if n.endswith(".off") and
+                   (not args.only or n[:-4] in args.only.split(",")))
     with concurrent.futures.ThreadPoolExecutor(2) as ex:
         results = list(ex.map(one, names))
     head = "hexmesh options: " + (" ".join(extra) or "(defaults)")

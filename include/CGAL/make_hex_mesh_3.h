@@ -219,9 +219,11 @@ inline std::size_t available_threads() { return 1; }
  *       pillows at a corner. A face then never has three corners on a curve where the chain turns
  *       inside it (the cube's worst cell: 0.57 without, 0.88 with; anchor's input sharp edges are
  *       within 0.35 surface sizes of the mesh's, 0.64 without). Where the capture with pillows
- *       leaves a cell below a scaled Jacobian of 0.3 or a checkMesh -allGeometry fault, the
- *       retries of `capture_retry_cells` run without them (cube_nonmanifold and fandisk_crack at
- *       the test sizes), and the better mesh is kept}
+ *       leaves a cell below a scaled Jacobian of 0.3, a checkMesh -allGeometry fault or a
+ *       boundary face farther than a quarter of the surface size from the input, the retries of
+ *       `capture_retry_cells` run without them (cube_nonmanifold and fandisk_crack at the test
+ *       sizes; cylinder at 0.7 to 0.9 times its default surface size, where some pillow vertices
+ *       stop short of the surface), and the better mesh is kept}
  *     \cgalParamType{`bool`}
  *     \cgalParamDefault{`true`}
  *   \cgalParamNEnd
@@ -258,7 +260,8 @@ inline std::size_t available_threads() { return 1; }
  *       the feature paths' turn penalty to snap weight, 2.5, 3.75, 1.67 after the default 5) until
  *       one leaves no cell below 0.3 and no fault that checkMesh -allGeometry reports (cells
  *       concave for OpenFOAM, faces failing its tet decomposition, on the points an OpenFOAM case
- *       gets). Then, where the mesh kept has a boundary face farther than a quarter of the
+ *       gets); where the capture with pillows leaves only boundary faces farther than a quarter of
+ *       the surface size from the input, the one without pillows runs too. Then, where the mesh kept has a boundary face farther than a quarter of the
  *       criteria's surface size from the input (`Hex_meshing_3::boundary_fidelity()`), such a
  *       fault or a cell below 0.3 (however many), the whole mesh is made again, its captures
  *       retried as above, with the staircase's surface vertices 0.25 cell sizes from the surface,
@@ -270,7 +273,8 @@ inline std::size_t available_threads() { return 1; }
  *       a minimum scaled Jacobian of 0.253 instead of 0.255). The captures of one grid are ranked
  *       by the faults left (after the first capture's removal of the buffer cells at its faults;
  *       a retry kept that has faults runs once more with the removal, outside the budget), then
- *       the cells below 0.3, the worst of them, the faults the removal found (each removed cell
+ *       the cells below 0.3, the worst of them, the faces beyond a quarter surface size, the
+ *       faults the removal found (each removed cell
  *       leaves a staircase face), the minimum; the meshes of the staircases by the faults left,
  *       the cells below 0.3, the faces beyond a quarter surface size, the minimum; the best is
  *       kept (deterministic). No retry with `polish_worst_cells(false)`; no retry of a grid's
@@ -369,6 +373,13 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     }
     return std::make_pair(below, worst);
   };
+  // the boundary faces farther than a quarter of the surface size from the input
+  const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
+  auto far_faces = [&](const HexMesh& mesh) {
+    const Hex_meshing_3::Boundary_fidelity fid = Hex_meshing_3::boundary_fidelity(mesh, domain, 0);
+    return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
+                                     [&](const auto& d) { return d.first > far_bound; }));
+  };
   // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
   // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets,
   // before the writer's node-by-node step, as the capture's removal sees them),
@@ -391,16 +402,18 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   };
   // The captures of one staircase are compared by (in this order) the faults left in the mesh
   // (`residual`: after the first capture's removal; none for a retry, whose faults the removal
-  // takes if it is kept), the cells below 0.3, the worst of them, the faults found (`found`: the
-  // buffer cells the removal takes, each leaves a staircase face at the boundary), the minimum.
+  // takes if it is kept), the cells below 0.3, the worst of them, the boundary faces beyond a
+  // quarter surface size from the input (`far`, as the staircases below count them), the faults
+  // found (`found`: the buffer cells the removal takes, each leaves a staircase face at the
+  // boundary), the minimum.
   // Before, the faults found came first: at t20_part at diagonal / 80 (`--size 4h --thin-cells 5`)
   // a retry with no fault and a cell at 0.024 beat the first capture with one buffer cell removed
   // and its worst cell at 0.278 (once the retries had a budget, below, and did not reach the
   // capture with one fault and no cell below 0.3); and the first capture's removal may leave a
   // fault (anchor at diagonal / 40: a concave cell).
-  auto rank = [](std::size_t residual, std::size_t found, const auto& f) {
+  auto rank = [](std::size_t residual, std::size_t found, const auto& f, std::size_t far) {
     const std::size_t low = std::get<1>(f);
-    return std::make_tuple(residual, low, low > 0 ? std::get<2>(f) : 0.0, found, std::get<2>(f));
+    return std::make_tuple(residual, low, low > 0 ? std::get<2>(f) : 0.0, far, found, std::get<2>(f));
   };
   // Other paths lift a few cells below 0.3, not many: where the first capture leaves more than
   // `max_low_cells` of them, the retries of that grid's capture are not run (the staircase
@@ -502,9 +515,10 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         capture_log.push_back(r);
         return capture_log.size() - 1;
       };
-      auto evaluate = [&](std::size_t i, std::size_t found, const auto& f) {
+      auto evaluate = [&](std::size_t i, std::size_t found, const auto& f, std::size_t far) {
         Hex_meshing_3::Capture_record& r = capture_log[i];
         r.evaluated = true;
+        r.far_faces = far;
         r.openfoam_faults_found = found;
         r.openfoam_faults_left = std::get<0>(f);
         r.cells_below_0_3 = std::get<1>(f);
@@ -567,16 +581,23 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         // (as `faults()` counts them on the same capture without the removal); its cells below
         // 0.3 and minimum after the removal
         const auto f0 = faults(out);
-        evaluate(kept_log, first_capture.foam_faults_found, f0);
-        auto best = rank(std::get<0>(f0), first_capture.foam_faults_found, f0);
+        const std::size_t far0 = far_faces(out);
+        evaluate(kept_log, first_capture.foam_faults_found, f0, far0);
+        auto best = rank(std::get<0>(f0), first_capture.foam_faults_found, f0, far0);
         // Where the first capture made no pillow it was the capture without them, which is not run
         // again; after one with pillows, the one without runs whatever the count of cells below 0.3,
-        // and its own count decides whether the other weights are tried.
+        // and its own count decides whether the other weights are tried. It also runs where the
+        // capture with pillows leaves nothing but boundary faces beyond a quarter surface size
+        // (`far_faces()`): a pillow's vertices may stop short of the surface where the chain's cells
+        // are small (cylinder at 0.9 times its default surface size: 46 vertices unreached along its
+        // rims, 68 far faces, against none without the pillows); the other weights are not tried
+        // for far faces alone (the staircase retries below are).
         const bool first_had_pillows = sequence[0].pillows && stats.pillow_cells > 0;
         if(sequence[0].pillows && !first_had_pillows) sequence.erase(sequence.begin() + 1);
         bool hopeless = std::get<1>(best) > max_low_cells && !first_had_pillows;
         for(std::size_t choice = 1; choice < sequence.size() && (all_retries || (!hopeless &&
-                                    (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<3>(best) > 0))); ++choice) {
+                                    (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<4>(best) > 0 ||
+                                     (choice == 1 && first_had_pillows && std::get<3>(best) > 0)))); ++choice) {
           if(!all_retries) {
             if(capture_cost > retry_left) break;   // (the budget is spent)
             retry_left -= capture_cost;
@@ -604,8 +625,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           ++stats.capture_tries;
           if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
           const auto f = faults(trial);
-          evaluate(log_i, std::get<0>(f), f);
-          const auto r = rank(0, std::get<0>(f), f);
+          const std::size_t far = far_faces(trial);
+          evaluate(log_i, std::get<0>(f), f, far);
+          const auto r = rank(0, std::get<0>(f), f, far);
           if(choice == 1 && first_had_pillows) hopeless = std::get<1>(f) > max_low_cells;
           if(r < best) {
             const std::size_t tries = stats.capture_tries;
@@ -618,7 +640,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           }
         }
         drop_ahead();
-        if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<3>(best) > 0) {
+        if(status != Hex_meshing_3::Status::CANCELED && stats.capture_choice != 0 && std::get<4>(best) > 0) {
           typename Capture::Options o = options_of(stats.capture_choice);
           o.remove_foam_faults = true;
           HexMesh trial(*grid);
@@ -685,12 +707,6 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   // mesh, its far faces and faults are not counted)
   if(body_fitted && polish && capture_cost > 0 && (all_retries || (retry_cells > 0 && capture_cost <= retry_left)) &&
      status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
-    const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
-    auto far_faces = [&](const HexMesh& mesh) {
-      const Hex_meshing_3::Boundary_fidelity fid = Hex_meshing_3::boundary_fidelity(mesh, domain, 0);
-      return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
-                                       [&](const auto& d) { return d.first > far_bound; }));
-    };
     // faults, cells below 0.3, far faces (`far`), minimum scaled Jacobian (negated)
     auto score = [&](const HexMesh& mesh, std::size_t far) {
       const auto f = faults(mesh);

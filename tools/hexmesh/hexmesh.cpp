@@ -275,7 +275,8 @@ int main(int argc, char** argv)
                                            "a warning says so)");
   app.add_flag("--feature-pillows,!--no-feature-pillows", feature_pillows, "a sheet of hexahedra along each convex sharp "
                "curve whose chain runs within half a cell of it, two boundary faces meeting at the curve; where that leaves "
-               "a cell below a scaled Jacobian of 0.3 or a checkMesh fault, the retries run without (default: on)");
+               "a cell below a scaled Jacobian of 0.3, a checkMesh fault or a boundary face beyond 1/4 of the surface size from the "
+               "input, the retries run without (default: on)");
   app.add_option("--capture-retry-cells", capture_retry_cells, "the retries' budget, in cells: where the boundary "
                  "capture leaves a cell below a scaled Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet "
                  "decomposition, it runs again (without the feature pillows, then with other weights of the feature paths), "
@@ -555,7 +556,8 @@ int main(int argc, char** argv)
                     << (r.rerun ? ", rerun removing its OpenFOAM faults" : "") << (r.ran_ahead ? ", run ahead" : "") << ": ";
           if(r.evaluated)
             std::cerr << r.openfoam_faults_found << " OpenFOAM faults found, " << r.openfoam_faults_left << " left, "
-                      << r.cells_below_0_3 << " cells below 0.3, min " << r.min_scaled_jacobian << ", ";
+                      << r.cells_below_0_3 << " cells below 0.3, min " << r.min_scaled_jacobian << ", " << r.far_faces
+                      << " faces beyond 1/4 surface size, ";
           std::cerr << r.seconds << " s" << (r.kept ? " (kept for its staircase)" : "") << std::setprecision(6) << "\n";
         }
         for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases)
@@ -955,6 +957,7 @@ int main(int argc, char** argv)
                 c["openfoam_faults_left"] = r.openfoam_faults_left;
                 c["cells_below_0_3"] = r.cells_below_0_3;
                 c["min_scaled_jacobian"] = r.min_scaled_jacobian;
+                c["far_faces"] = r.far_faces;
               }
               c["kept"] = r.kept;
               caps.push_back(c);

@@ -115,6 +115,7 @@ struct Capture_record
   std::size_t openfoam_faults_left = 0;    ///< the same, left in the mesh (the first capture removes its faults, retries do not)
   std::size_t cells_below_0_3 = 0;   ///< cells below a scaled Jacobian of 0.3
   double min_scaled_jacobian = 0;    ///< the minimum scaled Jacobian
+  std::size_t far_faces = 0;         ///< boundary faces farther than a quarter of the surface size from the input
   bool kept = false;                 ///< the capture kept for its staircase (`rerun` replaces it where there is one)
 };
 
