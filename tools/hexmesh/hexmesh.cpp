@@ -282,7 +282,8 @@ int main(int argc, char** argv)
                  "decomposition, it runs again (without the feature pillows, then with other weights of the feature paths), "
                  "and where the mesh kept still has such a cell or a boundary face beyond 1/4 of the surface size from the "
                  "input, the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead "
-                 "of 0.4; each retry counts the first capture's cells against the budget and runs only if they fit (a mesh "
+                 "of 0.4 (not where those faces are its only faults and all stand over parts or gaps thinner than two "
+                 "surface sizes); each retry counts the first capture's cells against the budget and runs only if they fit (a mesh "
                  "of N cells: at most budget / N retries); the best mesh is kept (faults, cells below 0.3, far faces); "
                  "0: never (default 200000)");
   app.add_flag("--all-capture-retries", all_capture_retries, "run every retry of --capture-retry-cells whatever its "
@@ -546,6 +547,9 @@ int main(int argc, char** argv)
       if(stats.staircase_tries > 1)
         std::cerr << "; the mesh made " << stats.staircase_tries << " times, the one with the staircase " << stats.staircase_gap
                   << " cell sizes off the surface kept";
+      if(stats.far_faces_over_thin_parts)
+        std::cerr << "; its faces beyond 1/4 surface size all stand over parts or gaps thinner than two surface sizes "
+                     "(--thin-cells meshes them), so it was not made again with the staircase closer";
       std::cerr << "\n";
       // the retries' search, capture by capture (where there was one)
       if(stats.captures.size() > 1) {
@@ -940,7 +944,7 @@ int main(int argc, char** argv)
           };
           j["boundary"] = {{"staircase_removed_cells", stats.staircase_removed_cells}, {"buffer_cells", stats.buffer_cells},
                            {"pillow_cells", stats.pillow_cells}, {"removed_buffer_cells", stats.removed_buffer_cells}, {"skewed_faces", stats.skewed_faces}, {"non_orthogonal_faces", stats.non_orthogonal_faces}, {"foam_fault_cells", stats.foam_fault_cells},
-                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"feature_joint_moves", stats.feature_joint_moves}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"turn_moves", stats.turn_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"staircase_tries", stats.staircase_tries}, {"staircase_gap", stats.staircase_gap}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
+                           {"unsnapped_vertices", stats.unsnapped_vertices}, {"feature_joint_moves", stats.feature_joint_moves}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"turn_moves", stats.turn_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"staircase_tries", stats.staircase_tries}, {"staircase_gap", stats.staircase_gap}, {"far_faces_over_thin_parts", stats.far_faces_over_thin_parts}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
                            {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},

@@ -180,6 +180,7 @@ struct Meshing_statistics
   std::size_t capture_choice = 0;           ///< the one kept, in the sequence of captures: with feature pillows if asked (the default), then without, the feature paths' ratio of turn penalty to snap weight 5, then 2.5, 3.75, 1.67 (0: the first capture; where it had pillows, 1 is the default weights without them, else the captures without pillows are not run twice and 1 is the ratio 2.5)
   std::size_t staircase_tries = 1;          ///< meshes made with the staircase at another distance from the surface (see `make_hex_mesh_3()`, `capture_retry_cells`: more than one where the first had a boundary face farther than a quarter of the surface size from the input or a cell below 0.3); `capture_tries` counts the captures of the one kept
   double staircase_gap = 0.4;               ///< the kept mesh's staircase distance from the surface, in cell sizes (0.4, then 0.25, 0.2)
+  bool far_faces_over_thin_parts = false;   ///< the first mesh's only faults were boundary faces beyond a quarter surface size, all over parts or gaps of the input thinner than two surface sizes: the closer staircases were not made
   std::size_t split_warp_repairs = 0;       ///< vertex moves of the repair of warped faces split in four (concave for OpenFOAM)
   std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
   std::size_t non_orthogonal_faces = 0;     ///< faces non-orthogonal beyond 70 degrees found after the repairs (the buffer cells at them removed)
