@@ -261,23 +261,25 @@ inline std::size_t available_threads() { return 1; }
  *       one leaves no cell below 0.3 and no fault that checkMesh -allGeometry reports (cells
  *       concave for OpenFOAM, faces failing its tet decomposition, on the points an OpenFOAM case
  *       gets); where the capture with pillows leaves only boundary faces farther than a quarter of
- *       the surface size from the input, the one without pillows runs too. Then, where the mesh kept has a boundary face farther than a quarter of the
- *       criteria's surface size from the input (`Hex_meshing_3::boundary_fidelity()`), such a
- *       fault or a cell below 0.3 (however many), the whole mesh is made again, its captures
+ *       the surface size from the input, the one without pillows runs too. Then, where the mesh
+ *       kept has a boundary face farther than a quarter of the criteria's surface size from the
+ *       input (`Hex_meshing_3::boundary_fidelity()`), such a fault or a cell below 0.3 (however
+ *       many), the whole mesh is made again, its captures
  *       retried as above, with the staircase's surface vertices 0.25 cell sizes from the surface,
  *       then 0.2, instead of 0.4, until one has none of them (not where the first mesh's only
  *       faults are such faces and every one stands over a part or a gap of the input thinner than
- *       two surface sizes, which no staircase resolves: `Meshing_statistics::far_faces_over_thin_parts`). Every retry counts the cells of the
- *       first capture's mesh against this budget, and runs only if they fit in what is left: a
- *       mesh of N cells gets at most budget / N retries (none above the budget), so small meshes
- *       get every retry and large ones few (elephant at diagonal / 80 with `--size 4h
+ *       two surface sizes, which no staircase resolves: `Meshing_statistics::
+ *       far_faces_over_thin_parts`). Every retry counts the cells of the first capture's mesh
+ *       against this budget, and runs only if they fit in what is left: a mesh of N cells gets at
+ *       most budget / N retries (none above the budget), so small meshes get every retry and
+ *       large ones few (elephant at diagonal / 80 with `--size 4h
  *       --thin-cells 5`, 89,500 cells: 2 retries, 29 s, against 8 and 80 s without a budget, for
  *       a minimum scaled Jacobian of 0.253 instead of 0.255). The captures of one grid are ranked
  *       by the faults left (after the first capture's removal of the buffer cells at its faults;
  *       a retry kept that has faults runs once more with the removal, outside the budget), then
  *       the cells below 0.3, the worst of them, the faces beyond a quarter surface size, the
- *       faults the removal found (each removed cell
- *       leaves a staircase face), the minimum; the meshes of the staircases by the faults left,
+ *       faults the removal found (each removed cell leaves a staircase face), the minimum; the
+ *       meshes of the staircases by the faults left,
  *       the cells below 0.3, the faces beyond a quarter surface size, the minimum; the best is
  *       kept (deterministic). No retry with `polish_worst_cells(false)`; no retry of a grid's
  *       capture where the first leaves more than 10 cells below 0.3 (other paths do not lift that
@@ -375,13 +377,17 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     }
     return std::make_pair(below, worst);
   };
-  // the boundary faces farther than a quarter of the surface size from the input
+  // the boundary faces farther than a quarter of the surface size from the input: the farthest
+  // point of each, and their count
   const double far_bound = 0.25 * CGAL::to_double(criteria.surface_size());
-  auto far_faces = [&](const HexMesh& mesh) {
+  auto far_points = [&](const HexMesh& mesh) {
     const Hex_meshing_3::Boundary_fidelity fid = Hex_meshing_3::boundary_fidelity(mesh, domain, 0);
-    return std::size_t(std::count_if(fid.face_distances.begin(), fid.face_distances.end(),
-                                     [&](const auto& d) { return d.first > far_bound; }));
+    std::vector<std::array<double, 3>> far;
+    for(const auto& d : fid.face_distances)
+      if(d.first > far_bound) far.push_back(d.second);
+    return far;
   };
+  auto far_faces = [&](const HexMesh& mesh) { return far_points(mesh).size(); };
   // whether the input is thinner than `limit` (a part or a gap between two of its sides facing
   // each other) at the point nearest to `x`: rays both ways along the normal of its nearest
   // triangle, up to the first triangle facing it (normals within 60 degrees of opposite)
@@ -389,6 +395,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     typedef typename GT::Vector_3 Vector_3;
     const std::size_t t = domain.closest_triangle(x);
     const auto& tr = domain.triangle(t);
+    const Point_3 q = GT().construct_projected_point_3_object()(tr, x);   // (on its triangle: no second search)
     auto unit = [](const auto& tri, Vector_3& n) {
       n = CGAL::cross_product(tri[1] - tri[0], tri[2] - tri[0]);
       const double l = std::sqrt(CGAL::to_double(n.squared_length()));
@@ -398,7 +405,6 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     };
     Vector_3 n;
     if(!unit(tr, n)) return false;
-    const Point_3 q = domain.closest_point(x);
     const double eps = 1e-7 * limit;
     for(double side : {-1.0, 1.0}) {
       const Vector_3 dir = n * side;
@@ -427,14 +433,6 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         if(thin_at(Point_3(y[0], y[1], y[2]), limit)) return true;
       }
     return false;
-  };
-  // every boundary face farther than a quarter surface size from the input stands over a thin
-  // part or gap (its farthest point: `thin_at()`)
-  auto far_faces_thin = [&](const HexMesh& mesh, double limit) {
-    const Hex_meshing_3::Boundary_fidelity fid = Hex_meshing_3::boundary_fidelity(mesh, domain, 0);
-    for(const auto& d : fid.face_distances)
-      if(d.first > far_bound && !thin_near(d.second, limit)) return false;
-    return true;
   };
   // a mesh's faults, compared in order: cells concave for OpenFOAM and faces failing its tet
   // decomposition (as `checkMesh -allGeometry` counts them on the points an OpenFOAM case gets,
@@ -771,7 +769,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // (the cheap counts first: a mesh with no cell below 0.3 and no far face is kept without
     // counting its OpenFOAM faults, which its capture removed: anchor at its test size 5.25 ->
     // 5.05 s, against 4.8 s without the staircase retries)
-    const std::size_t far0 = far_faces(out);
+    const std::vector<std::array<double, 3>> far_pts0 = far_points(out);
+    const std::size_t far0 = far_pts0.size();
     const auto low0 = low_cells(out);
     const bool clean = far0 == 0 && low0.first == 0;
     auto best = clean ? std::make_tuple(std::size_t(0), std::size_t(0), std::size_t(0), -low0.second) : score(out, far0);
@@ -789,8 +788,9 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // diagonal / 80 (its slot and fin 0.01 wide, cells of 0.0197): 4 far faces at the slot's end
     // whatever the staircase, 8.7 s -> 3.1 s; at / 40 one of its 61 far faces is not over the slot
     // and the closer staircases run (48 far faces at 0.2).
+    const double thin_limit = 2 * CGAL::to_double(criteria.surface_size());
     const bool thin_only = !clean && std::get<0>(best) == 0 && std::get<1>(best) == 0 && far0 > 0 && !all_retries &&
-                           far_faces_thin(out, 2 * CGAL::to_double(criteria.surface_size()));
+                           std::all_of(far_pts0.begin(), far_pts0.end(), [&](const auto& x) { return thin_near(x, thin_limit); });
     stats.far_faces_over_thin_parts = thin_only;
     std::size_t tries = 1, choice = 0;
     for(std::size_t k = 1; k < std::size(gaps) && !thin_only && (all_retries ||
