@@ -494,8 +494,15 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   // One mesh: the grid, its staircase kept `gap` cell sizes off the surface, and its capture (with
   // the retries of `capture_retry_cells`; with a parallel tag, one of them at a time runs ahead,
   // see above).
+  // the faults and far faces of the mesh `mesh_once()` kept, where its retries measured them on
+  // that very mesh (the staircase retries below measure the same, and need not again)
+  typedef decltype(faults(std::declval<const HexMesh&>())) Faults;
+  std::optional<Faults> kept_faults;
+  std::optional<std::vector<std::array<double, 3>>> kept_far;
   auto mesh_once = [&](double gap, HexMesh& out, Hex_meshing_3::Meshing_statistics& stats,
                        std::vector<Hex_meshing_3::Region_leak>& leaks) {
+    kept_faults.reset();
+    kept_far.reset();
     Hex_meshing_3::internal::Ahead_group workers;
     std::atomic<bool> stop_ahead{false};
     Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
@@ -635,7 +642,10 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         // (as `faults()` counts them on the same capture without the removal); its cells below
         // 0.3 and minimum after the removal
         const auto f0 = faults(out);
-        const std::size_t far0 = far_faces(out);
+        std::vector<std::array<double, 3>> far_pts0 = far_points(out);
+        const std::size_t far0 = far_pts0.size();
+        kept_faults = f0;
+        kept_far = std::move(far_pts0);
         evaluate(kept_log, first_capture.foam_faults_found, f0, far0);
         auto best = rank(std::get<0>(f0), first_capture.foam_faults_found, f0, far0);
         // Where the first capture made no pillow it was the capture without them, which is not run
@@ -679,13 +689,16 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           ++stats.capture_tries;
           if(!ok) { status = Hex_meshing_3::Status::CANCELED; break; }   // (the best mesh so far stays)
           const auto f = faults(trial);
-          const std::size_t far = far_faces(trial);
+          std::vector<std::array<double, 3>> far_pts = far_points(trial);
+          const std::size_t far = far_pts.size();
           evaluate(log_i, std::get<0>(f), f, far);
           const auto r = rank(0, std::get<0>(f), f, far);
           if(choice == 1 && first_had_pillows) hopeless = std::get<1>(f) > max_low_cells;
           if(r < best) {
             const std::size_t tries = stats.capture_tries;
             kept_log = log_i;
+            kept_faults = f;
+            kept_far = std::move(far_pts);
             best = r;
             out = std::move(trial);
             stats = st;
@@ -704,6 +717,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           const bool rerun_ok = Capture(trial, domain, features, st, o).run(visitor);
           const std::size_t rerun_log = log_capture(choice, trial, seconds_since(t0), false);
           capture_log[rerun_log].rerun = true;
+          kept_faults.reset();   // (another mesh: its buffer cells at faults removed)
+          kept_far.reset();
           if(rerun_ok) {
             kept_log = rerun_log;
             out = std::move(trial);
@@ -762,16 +777,18 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   if(body_fitted && polish && capture_cost > 0 && (all_retries || (retry_cells > 0 && capture_cost <= retry_left)) &&
      status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
     // faults, cells below 0.3, far faces (`far`), minimum scaled Jacobian (negated)
+    // (the faults `mesh_once()` measured on the mesh it kept, if it did)
     auto score = [&](const HexMesh& mesh, std::size_t far) {
-      const auto f = faults(mesh);
+      const auto f = kept_faults ? *kept_faults : faults(mesh);
       return std::make_tuple(std::get<0>(f), std::get<1>(f), far, std::get<2>(f));
     };
+    auto kept_far_points = [&](const HexMesh& mesh) { return kept_far ? *kept_far : far_points(mesh); };
     // (the cheap counts first: a mesh with no cell below 0.3 and no far face is kept without
     // counting its OpenFOAM faults, which its capture removed: anchor at its test size 5.25 ->
     // 5.05 s, against 4.8 s without the staircase retries)
-    const std::vector<std::array<double, 3>> far_pts0 = far_points(out);
+    const std::vector<std::array<double, 3>> far_pts0 = kept_far_points(out);
     const std::size_t far0 = far_pts0.size();
-    const auto low0 = low_cells(out);
+    const auto low0 = kept_faults ? std::make_pair(std::get<1>(*kept_faults), -std::get<2>(*kept_faults)) : low_cells(out);
     const bool clean = far0 == 0 && low0.first == 0;
     auto best = clean ? std::make_tuple(std::size_t(0), std::size_t(0), std::size_t(0), -low0.second) : score(out, far0);
     auto evaluate = [&](Hex_meshing_3::Staircase_record& r, const decltype(best)& sc) {
@@ -810,7 +827,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       ++tries;
       if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
       if(trial.number_of_cells() == 0) continue;
-      const auto sc = score(trial, far_faces(trial));
+      const auto sc = score(trial, kept_far_points(trial).size());
       evaluate(staircase_log.back(), sc);
       if(sc < best) {
         best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k;

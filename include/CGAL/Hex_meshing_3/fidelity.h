@@ -121,8 +121,17 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   const double tiny = 1e-9 * std::sqrt(CGAL::square(bb.xmax() - bb.xmin()) + CGAL::square(bb.ymax() - bb.ymin()) +
                                        CGAL::square(bb.zmax() - bb.zmin()));
   // mesh -> input
+  // (each input query once: a vertex's closest point is kept for the faces around it, and a
+  // face centre's serves its cap test and its distance; the domain's `squared_distance()` is the
+  // squared distance to its `closest_point()`, so the values are the same as querying each time)
   double sum = 0;
   std::vector<Triangle_3> boundary;
+  std::vector<Point_3> vclosest(mesh.points.size());
+  std::vector<char> vknown(mesh.points.size(), 0);
+  auto closest_of_vertex = [&](std::size_t v) -> const Point_3& {
+    if(!vknown[v]) { vclosest[v] = domain.closest_point(mesh.points[v]); vknown[v] = 1; }
+    return vclosest[v];
+  };
   for(const auto& f : mesh.boundary_faces) {
     if(f.patch < 6) continue;
     const Point_3 &a = mesh.points[f.vertices[0]], &b = mesh.points[f.vertices[1]], &c = mesh.points[f.vertices[2]],
@@ -131,7 +140,8 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     boundary.emplace_back(a, c, d);
     const Point_3 centre((a.x() + b.x() + c.x() + d.x()) / 4, (a.y() + b.y() + c.y() + d.y()) / 4,
                          (a.z() + b.z() + c.z() + d.z()) / 4);
-    if(border_tree && CGAL::to_double(border_tree->squared_distance(domain.closest_point(centre))) <= tiny * tiny) {
+    const Point_3 centre_closest = domain.closest_point(centre);
+    if(border_tree && CGAL::to_double(border_tree->squared_distance(centre_closest)) <= tiny * tiny) {
       ++r.cap_faces;
       r.cap_area += 0.5 * std::sqrt(CGAL::to_double(CGAL::cross_product(c - a, d - b).squared_length()));
       continue;
@@ -141,7 +151,8 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     std::uint8_t at = 4;
     const Point_3* pts[5] = {&a, &b, &c, &d, &centre};
     for(std::uint8_t k = 0; k < 5; ++k) {
-      const double dist = std::sqrt(CGAL::to_double(domain.squared_distance(*pts[k])));
+      const Point_3& q = k < 4 ? closest_of_vertex(std::size_t(f.vertices[k])) : centre_closest;
+      const double dist = std::sqrt(CGAL::to_double(GT().compute_squared_distance_3_object()(*pts[k], q)));
       if(dist > worst) { worst = dist; at = k; }
     }
     const std::array<double, 3> where = {{CGAL::to_double(pts[at]->x()), CGAL::to_double(pts[at]->y()), CGAL::to_double(pts[at]->z())}};
@@ -150,7 +161,7 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     r.face_indices.push_back(std::size_t(&f - mesh.boundary_faces.data()));
     r.face_worst_points.push_back(at);
     r.face_worst_on_border.push_back(at < 4 && worst > 0 && border_tree &&
-                                     CGAL::to_double(border_tree->squared_distance(domain.closest_point(*pts[at]))) <= tiny * tiny);
+                                     CGAL::to_double(border_tree->squared_distance(closest_of_vertex(std::size_t(f.vertices[at])))) <= tiny * tiny);
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);
