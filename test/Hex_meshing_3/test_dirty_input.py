@@ -251,8 +251,11 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # and elephant-with-holes' second; since a capture with pillows that leaves faces beyond a quarter
 # surface size is run again without them (cylinder at 0.7 to 0.9 times its surface size: 68 to 94
 # far faces, none without the pillows), rotor's and teapot's are captured twice, the second (no
-# pillows) kept
-CAPTURE_RETRIED = {"elephant", "elephant-with-holes", "fandisk_crack", "rotor", "teapot"}
+# pillows) kept; since the captures with other path weights wait for the closer staircases where
+# the captures before them leave far faces (`Staircase_record::weights_deferred`), the mesh kept
+# for elephant-with-holes is the first of those made afterwards on its first staircase's grid
+# (the same mesh as its second capture before: one capture of that mesh)
+CAPTURE_RETRIED = {"elephant", "fandisk_crack", "rotor", "teapot"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
@@ -1015,7 +1018,7 @@ def main():
         check(b_["capture_choice"] < b_["capture_tries"] and (b_["capture_tries"] > 1) == retried,
               f"{stem}: {b_['capture_tries']} capture(s) run (more than one: {retried}), setting {b_['capture_choice']} kept")
         s_retried = stem in STAIRCASE_RETRIED
-        check((b_["staircase_tries"] > 1) == s_retried and b_["staircase_tries"] <= 3 and not b_["far_faces_over_thin_parts"] and
+        check((b_["staircase_tries"] > 1) == s_retried and b_["staircase_tries"] <= 4 and not b_["far_faces_over_thin_parts"] and
               b_["staircase_gap"] in (0.4, 0.25, 0.2) and (s_retried or b_["staircase_gap"] == 0.4),
               f"{stem}: {b_['staircase_tries']} mesh(es) made (more than one: {s_retried}), the one with the staircase "
               f"{b_['staircase_gap']} cell sizes off the surface kept")

@@ -566,10 +566,11 @@ int main(int argc, char** argv)
         }
         for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases)
           if(r.evaluated)
-            std::cerr << "hexmesh: staircase " << r.gap << ": " << r.captures << " captures, " << r.far_faces << " faces beyond 1/4 surface size, "
+            std::cerr << "hexmesh: staircase " << r.gap << (r.deferred_weights ? " (its deferred path weights)" : "") << ": "
+                      << r.captures << " captures, " << r.far_faces << " faces beyond 1/4 surface size, "
                       << r.openfoam_faults << " OpenFOAM faults, " << r.cells_below_0_3 << " cells below 0.3, min "
                       << std::setprecision(3) << r.min_scaled_jacobian << ", " << r.seconds << " s" << std::setprecision(6)
-                      << (r.kept ? " (kept)" : "") << "\n";
+                      << (r.weights_deferred ? " (other path weights deferred: far faces)" : "") << (r.kept ? " (kept)" : "") << "\n";
       }
     }
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
@@ -967,7 +968,8 @@ int main(int argc, char** argv)
               caps.push_back(c);
             }
             for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases) {
-              nlohmann::ordered_json c = {{"gap", r.gap}, {"captures", r.captures}, {"seconds", r.seconds}, {"evaluated", r.evaluated}};
+              nlohmann::ordered_json c = {{"gap", r.gap}, {"captures", r.captures}, {"seconds", r.seconds}, {"evaluated", r.evaluated},
+                                          {"weights_deferred", r.weights_deferred}, {"deferred_weights", r.deferred_weights}};
               if(r.evaluated) {
                 c["far_faces"] = r.far_faces;
                 c["openfoam_faults"] = r.openfoam_faults;

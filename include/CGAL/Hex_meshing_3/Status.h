@@ -135,6 +135,8 @@ struct Staircase_record
   double min_scaled_jacobian = 0;    ///< the minimum scaled Jacobian
   double seconds = 0;                ///< wall seconds from its grid to its kept capture
   bool kept = false;                 ///< the mesh returned
+  bool weights_deferred = false;     ///< its captures with other path weights were left until the closer staircases were made (its captures so far left boundary faces beyond a quarter surface size, which those weights do not reach)
+  bool deferred_weights = false;     ///< this mesh is those captures, made after the closer staircases for the staircase kept until then
 };
 
 /*!
