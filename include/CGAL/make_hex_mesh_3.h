@@ -269,7 +269,12 @@ inline std::size_t available_threads() { return 1; }
  *       then 0.2, instead of 0.4, until one has none of them (not where the first mesh's only
  *       faults are such faces and every one stands over a part or a gap of the input thinner than
  *       two surface sizes, which no staircase resolves: `Meshing_statistics::
- *       far_faces_over_thin_parts`). Every retry counts the cells of the first capture's mesh
+ *       far_faces_over_thin_parts`). Where a staircase's captures so far leave such far faces,
+ *       which the other ratios do not reach, its captures with those ratios wait until the closer
+ *       staircases are made, and run (on its grid made again) only if its mesh is the one kept and
+ *       has a cell below 0.3 or a fault (`Hex_meshing_3::Staircase_record::weights_deferred`;
+ *       not where the budget lacks room for two captures of each closer staircase and one
+ *       more). Every retry counts the cells of the first capture's mesh
  *       against this budget, and runs only if they fit in what is left: a mesh of N cells gets at
  *       most budget / N retries (none above the budget), so small meshes get every retry and
  *       large ones few (elephant at diagonal / 80 with `--size 4h

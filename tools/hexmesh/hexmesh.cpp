@@ -279,7 +279,9 @@ int main(int argc, char** argv)
                "input, the retries run without (default: on)");
   app.add_option("--capture-retry-cells", capture_retry_cells, "the retries' budget, in cells: where the boundary "
                  "capture leaves a cell below a scaled Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet "
-                 "decomposition, it runs again (without the feature pillows, then with other weights of the feature paths), "
+                 "decomposition, it runs again (without the feature pillows, then with other weights of the feature paths: "
+                 "those wait until the closer staircases are made where the captures before them leave boundary faces beyond "
+                 "1/4 of the surface size), "
                  "and where the mesh kept still has such a cell or a boundary face beyond 1/4 of the surface size from the "
                  "input, the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead "
                  "of 0.4 (not where those faces are its only faults and all stand over parts or gaps thinner than two "
