@@ -271,10 +271,10 @@ inline std::size_t available_threads() { return 1; }
  *       two surface sizes, which no staircase resolves: `Meshing_statistics::
  *       far_faces_over_thin_parts`). Where a staircase's captures so far leave such far faces,
  *       which the other ratios do not reach, its captures with those ratios wait until the closer
- *       staircases are made, and run (on its grid made again) only if its mesh is the one kept and
- *       has a cell below 0.3 or a fault (`Hex_meshing_3::Staircase_record::weights_deferred`;
- *       not where the budget lacks room for two captures of each closer staircase and one
- *       more). Every retry counts the cells of the first capture's mesh
+ *       staircases are made, and run (on its grid made again; the staircase kept first) only while
+ *       the best mesh has a cell below 0.3 or a fault (`Hex_meshing_3::Staircase_record::
+ *       weights_deferred`; not where the budget lacks room for two captures of each closer
+ *       staircase and one more). Every retry counts the cells of the first capture's mesh
  *       against this budget, and runs only if they fit in what is left: a mesh of N cells gets at
  *       most budget / N retries (none above the budget), so small meshes get every retry and
  *       large ones few (elephant at diagonal / 80 with `--size 4h
@@ -872,31 +872,38 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     }
     // The captures with other path weights lift cells below 0.3 and OpenFOAM faults, not far
     // faces: a staircase whose captures left far faces made the closer staircases before them
-    // (`capture_part` 1). If the mesh kept is such a staircase's and has cells below 0.3 or faults,
-    // they are made now, on its grid made again. (fandisk at diagonal / 80: its 38 far faces at 0.4
-    // are there whatever the weights, which took 4 captures before the closer staircases; the
-    // mesh kept, at 0.2, the same, 12.6 -> 8.7 s.)
-    if(status != Hex_meshing_3::Status::CANCELED && !all_retries && staircase_log[kept_staircase].weights_deferred &&
-       (std::get<0>(best) > 0 || std::get<1>(best) > 0) && capture_cost <= retry_left) {
+    // (`capture_part` 1). If the mesh kept has cells below 0.3 or faults, they are made now on the
+    // grids of those staircases (made again), the one kept first, then the others in order,
+    // while the best mesh has such cells and the budget has room. (fandisk at diagonal / 80: its
+    // 38 far faces at 0.4 are there whatever the weights, which took 4 captures before the
+    // closer staircases; the mesh kept, at 0.2, the same, 12.6 -> 8.7 s.)
+    std::vector<std::size_t> deferred;   // (entries of `staircase_log`)
+    for(std::size_t i = 0; i < staircase_log.size(); ++i) if(staircase_log[i].weights_deferred) deferred.push_back(i);
+    std::stable_partition(deferred.begin(), deferred.end(), [&](std::size_t i) { return i == kept_staircase; });
+    for(const std::size_t i : deferred) {
+      if(status == Hex_meshing_3::Status::CANCELED || all_retries || !(std::get<0>(best) > 0 || std::get<1>(best) > 0) ||
+         capture_cost > retry_left)
+        break;
       retry_left -= capture_cost;
       capture_part = 2;
+      const double gap = staircase_log[i].gap;
       HexMesh trial;
       Hex_meshing_3::Meshing_statistics st;
       std::vector<Hex_meshing_3::Region_leak> lk;
       const std::size_t before = capture_log.size();
       const auto t0 = std::chrono::steady_clock::now();
-      const Hex_meshing_3::Status s = mesh_once(gaps[choice], trial, st, lk);
-      log_staircase(gaps[choice], before, t0);
+      const Hex_meshing_3::Status s = mesh_once(gap, trial, st, lk);
+      log_staircase(gap, before, t0);
       staircase_log.back().deferred_weights = true;
       ++tries;
-      if(s == Hex_meshing_3::Status::CANCELED) status = s;   // (the best mesh so far stays)
-      else if(trial.number_of_cells() > 0) {
-        const auto sc = score(trial, kept_far_points(trial).size());
-        evaluate(staircase_log.back(), sc);
-        if(sc < best) {
-          best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s;
-          kept_staircase = staircase_log.size() - 1;
-        }
+      if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
+      if(trial.number_of_cells() == 0) continue;
+      const auto sc = score(trial, kept_far_points(trial).size());
+      evaluate(staircase_log.back(), sc);
+      if(sc < best) {
+        best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s;
+        choice = std::size_t(std::find(std::begin(gaps), std::end(gaps), gap) - std::begin(gaps));
+        kept_staircase = staircase_log.size() - 1;
       }
     }
     stats.staircase_tries = tries;
