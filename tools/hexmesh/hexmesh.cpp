@@ -92,13 +92,17 @@ struct Progress
   {
     // a second "refine": the mesh is made again with the staircase closer to the surface (the
     // staircase retries of `capture_retry_cells`)
-    const bool again = std::string(name) == "refine" &&
-                       std::any_of(work.begin(), work.end(), [](const auto& w) { return w.first == "refine"; });
+    // (after the three staircases, a grid made again for its deferred path weights)
+    const auto refines = std::string(name) == "refine" ?
+                         std::count_if(work.begin(), work.end(), [](const auto& w) { return w.first == "refine"; }) : 0;
     phase = name; phase_t0 = std::chrono::steady_clock::now(); last_percent = -1;
     work.push_back({name, cells});
-    if(!quiet && again)
+    if(!quiet && refines > 0 && refines < 3)
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: a boundary face stands beyond 1/4 surface size off the input "
                    "or a cell is below 0.3: the mesh is made again with the staircase closer to the surface\n";
+    if(!quiet && refines >= 3)
+      std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: a cell is below 0.3 or an OpenFOAM fault is left: an earlier "
+                   "staircase's mesh is made again for its captures with other path weights (deferred)\n";
     if(!quiet) {
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: " << name << " (" << cells << " cells)";
       std::cerr << (tty ? "" : "\n") << std::flush;
