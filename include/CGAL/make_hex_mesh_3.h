@@ -843,6 +843,31 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
                            std::all_of(far_pts0.begin(), far_pts0.end(), [&](const auto& x) { return thin_near(x, thin_limit); });
     stats.far_faces_over_thin_parts = thin_only;
     std::size_t tries = 1, choice = 0;
+    // another mesh, with the staircase `gaps[k]` and the captures `part` of `mesh_once()`, the
+    // best kept; false if it was cancelled (the best mesh so far stays)
+    auto another_mesh = [&](std::size_t k, int part) {
+      HexMesh trial;
+      Hex_meshing_3::Meshing_statistics st;
+      std::vector<Hex_meshing_3::Region_leak> lk;
+      const std::size_t before = capture_log.size();
+      const auto t0 = std::chrono::steady_clock::now();
+      capture_part = part;
+      closer_staircases = std::size(gaps) - 1 - k;
+      const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk);
+      log_staircase(gaps[k], before, t0);
+      staircase_log.back().weights_deferred = weights_deferred;
+      staircase_log.back().deferred_weights = part == 2;
+      ++tries;
+      if(s == Hex_meshing_3::Status::CANCELED) { status = s; return false; }
+      if(trial.number_of_cells() == 0) return true;
+      const auto sc = score(trial, kept_far_points(trial).size());
+      evaluate(staircase_log.back(), sc);
+      if(sc < best) {
+        best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k;
+        kept_staircase = staircase_log.size() - 1;
+      }
+      return true;
+    };
     for(std::size_t k = 1; k < std::size(gaps) && !thin_only && (all_retries ||
                            (std::get<0>(best) > 0 || std::get<1>(best) > 0 || std::get<2>(best) > 0)); ++k) {
       // (the budget: its first capture is counted here, its retries in `mesh_once()`)
@@ -850,25 +875,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         if(capture_cost > retry_left) break;
         retry_left -= capture_cost;
       }
-      HexMesh trial;
-      Hex_meshing_3::Meshing_statistics st;
-      std::vector<Hex_meshing_3::Region_leak> lk;
-      const std::size_t before = capture_log.size();
-      const auto t0 = std::chrono::steady_clock::now();
-      capture_part = k + 1 < std::size(gaps) ? 1 : 0;   // (the closest staircase's weights are not deferred)
-      closer_staircases = std::size(gaps) - 1 - k;
-      const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk);
-      log_staircase(gaps[k], before, t0);
-      staircase_log.back().weights_deferred = weights_deferred;
-      ++tries;
-      if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
-      if(trial.number_of_cells() == 0) continue;
-      const auto sc = score(trial, kept_far_points(trial).size());
-      evaluate(staircase_log.back(), sc);
-      if(sc < best) {
-        best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s; choice = k;
-        kept_staircase = staircase_log.size() - 1;
-      }
+      // (the closest staircase's weights are not deferred)
+      if(!another_mesh(k, k + 1 < std::size(gaps) ? 1 : 0)) break;
     }
     // The captures with other path weights lift cells below 0.3 and OpenFOAM faults, not far
     // faces: a staircase whose captures left far faces made the closer staircases before them
@@ -876,35 +884,20 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     // grids of those staircases (made again), the one kept first, then the others in order,
     // while the best mesh has such cells and the budget has room. (fandisk at diagonal / 80: its
     // 38 far faces at 0.4 are there whatever the weights, which took 4 captures before the
-    // closer staircases; the mesh kept, at 0.2, the same, 12.6 -> 8.7 s.)
-    std::vector<std::size_t> deferred;   // (entries of `staircase_log`)
-    for(std::size_t i = 0; i < staircase_log.size(); ++i) if(staircase_log[i].weights_deferred) deferred.push_back(i);
-    std::stable_partition(deferred.begin(), deferred.end(), [&](std::size_t i) { return i == kept_staircase; });
-    for(const std::size_t i : deferred) {
+    // closer staircases; the mesh kept, at 0.2, the same, 12.6 -> 8.7 s.) (Only after the three
+    // staircases: the loop above stops early only where the mesh has neither, or the budget is
+    // spent.)
+    std::vector<std::size_t> deferred;   // (their places in `gaps`)
+    for(std::size_t i = 0; i < staircase_log.size(); ++i)
+      if(staircase_log[i].weights_deferred)
+        deferred.push_back(std::size_t(std::find(std::begin(gaps), std::end(gaps), staircase_log[i].gap) - std::begin(gaps)));
+    std::stable_partition(deferred.begin(), deferred.end(), [&](std::size_t k) { return k == choice; });
+    for(const std::size_t k : deferred) {
       if(status == Hex_meshing_3::Status::CANCELED || all_retries || !(std::get<0>(best) > 0 || std::get<1>(best) > 0) ||
          capture_cost > retry_left)
         break;
       retry_left -= capture_cost;
-      capture_part = 2;
-      const double gap = staircase_log[i].gap;
-      HexMesh trial;
-      Hex_meshing_3::Meshing_statistics st;
-      std::vector<Hex_meshing_3::Region_leak> lk;
-      const std::size_t before = capture_log.size();
-      const auto t0 = std::chrono::steady_clock::now();
-      const Hex_meshing_3::Status s = mesh_once(gap, trial, st, lk);
-      log_staircase(gap, before, t0);
-      staircase_log.back().deferred_weights = true;
-      ++tries;
-      if(s == Hex_meshing_3::Status::CANCELED) { status = s; break; }   // (the best mesh so far stays)
-      if(trial.number_of_cells() == 0) continue;
-      const auto sc = score(trial, kept_far_points(trial).size());
-      evaluate(staircase_log.back(), sc);
-      if(sc < best) {
-        best = sc; out = std::move(trial); stats = st; leaks = std::move(lk); status = s;
-        choice = std::size_t(std::find(std::begin(gaps), std::end(gaps), gap) - std::begin(gaps));
-        kept_staircase = staircase_log.size() - 1;
-      }
+      if(!another_mesh(k, 2)) break;
     }
     stats.staircase_tries = tries;
     stats.staircase_gap = gaps[choice];
