@@ -271,10 +271,12 @@ inline std::size_t available_threads() { return 1; }
  *       two surface sizes, which no staircase resolves: `Meshing_statistics::
  *       far_faces_over_thin_parts`). Where a staircase's captures so far leave such far faces,
  *       which the other ratios do not reach, its captures with those ratios wait until the closer
- *       staircases are made, and run (on its grid made again; the staircase kept first) only while
- *       the best mesh has a cell below 0.3 or a fault (`Hex_meshing_3::Staircase_record::
- *       weights_deferred`; not where the budget lacks room for two captures of each closer
- *       staircase and one more). Every retry counts the cells of the first capture's mesh
+ *       staircases are made, and so does its capture without pillows where the one with them
+ *       also leaves a cell below 0.3; they run (on its grid, kept for them; the staircase kept
+ *       first; a capture that ran ahead before it waited is not run again) only while the best
+ *       mesh has a cell below 0.3 or a fault (`Hex_meshing_3::Staircase_record::
+ *       weights_deferred`, `pillow_free_deferred`; not where the budget lacks room for two
+ *       captures of each closer staircase and one more). Every retry counts the cells of the first capture's mesh
  *       against this budget, and runs only if they fit in what is left: a mesh of N cells gets at
  *       most budget / N retries (none above the budget), so small meshes get every retry and
  *       large ones few (elephant at diagonal / 80 with `--size 4h
@@ -505,23 +507,50 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   std::optional<Faults> kept_faults;
   std::optional<std::vector<std::array<double, 3>>> kept_far;
   // which captures `mesh_once()` runs (`capture_part`): 0 all of its sequence; 1 all but those with
-  // other path weights once the captures before them leave far faces (`weights_deferred` is then
-  // set: see the staircase retries below); 2 only those with other path weights
+  // other path weights once the captures before them leave far faces, and but the one without
+  // pillows too where the one with them leaves far faces and cells below 0.3 (`weights_deferred`,
+  // `pillow_free_deferred` are then set: see the staircase retries below); 2 only those deferred
+  // (with the one without pillows if `run_pillow_free`)
   int capture_part = 0;
   bool weights_deferred = false;
+  // (with them the capture without pillows: `Staircase_record::pillow_free_deferred`; in part 2,
+  // whether it runs)
+  bool pillow_free_deferred = false, run_pillow_free = false;
+  // A capture deferred while it ran ahead (with a parallel tag) is kept, to serve as the first of
+  // the deferred captures if they are made (the same capture: the same grid, the same options), not
+  // run again (`stashed`: its staircase's gap, its place in the whole sequence, its mesh, ...)
+  struct Stashed_capture { double gap; bool pillow_free; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
+  std::vector<Stashed_capture> stashed;
+  // the grids of the staircases whose captures were deferred, kept for them (not made again): at
+  // most two, of at most a fifth and a third of the retries' budget in cells
+  struct Kept_grid { double gap; HexMesh grid; Hex_meshing_3::Meshing_statistics stats; std::vector<Hex_meshing_3::Region_leak> leaks; Hex_meshing_3::Status status; };
+  std::vector<Kept_grid> kept_grids;
   std::size_t closer_staircases = 0;   // (the staircases after the one `mesh_once()` makes)
   auto mesh_once = [&](double gap, HexMesh& out, Hex_meshing_3::Meshing_statistics& stats,
                        std::vector<Hex_meshing_3::Region_leak>& leaks) {
     kept_faults.reset();
     kept_far.reset();
     weights_deferred = false;
+    pillow_free_deferred = false;
     Hex_meshing_3::internal::Ahead_group workers;
     std::atomic<bool> stop_ahead{false};
-    Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
-    Hex_meshing_3::Status status = mesher.run(out, max_cells, seed, visitor, body_fitted ? gap : 0.0);
-    stats = mesher.statistics();
-    leaks = mesher.leaks();
-    mesher.release();   // the capture's memory peak need not hold the octree too
+    Hex_meshing_3::Status status;
+    const auto kept_grid = std::find_if(kept_grids.begin(), kept_grids.end(), [&](const Kept_grid& g) {
+      return capture_part == 2 && g.gap == gap; });
+    if(kept_grid != kept_grids.end()) {   // (the grid of a staircase whose captures were deferred)
+      out = std::move(kept_grid->grid);
+      stats = std::move(kept_grid->stats);
+      leaks = std::move(kept_grid->leaks);
+      status = kept_grid->status;
+      kept_grids.erase(kept_grid);
+    } else {
+      Hex_meshing_3::internal::Octree_mesher_3<MeshDomain, Criteria> mesher(domain, criteria, box);
+      status = mesher.run(out, max_cells, seed, visitor, body_fitted ? gap : 0.0);
+      stats = mesher.statistics();
+      leaks = mesher.leaks();
+      mesher.release();   // the capture's memory peak need not hold the octree too
+    }
+    const Hex_meshing_3::Status grid_status = status;
     if(body_fitted && status != Hex_meshing_3::Status::CANCELED && out.number_of_cells() > 0) {
       visitor.on_phase_begin("capture", out.number_of_cells());
       typedef Hex_meshing_3::internal::Boundary_capture_3<HexMesh, MeshDomain, Features> Capture;
@@ -567,7 +596,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       if(copt.feature_pillows) sequence.push_back({true, 1, 1});
       for(const Choice& c : {Choice{false, 1, 1}, Choice{false, 1, 2}, Choice{false, 0.75, 1}, Choice{false, 1, 3}})
         sequence.push_back(c);
-      if(capture_part == 2) sequence.erase(sequence.begin(), sequence.begin() + (copt.feature_pillows ? 2 : 1));
+      if(capture_part == 2) sequence.erase(sequence.begin(), sequence.begin() + (copt.feature_pillows ? (run_pillow_free ? 1 : 2) : 1));
       // (a capture with other path weights than the first's)
       auto other_weights = [&](std::size_t choice) { return !sequence[choice].pillows && !(sequence[choice] == Choice{false, 1, 1}); };
       auto options_of = [&](std::size_t choice) {
@@ -645,14 +674,28 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         decltype(drop_ahead)& drop;
         ~Ahead_guard() { drop(); }
       } ahead_guard{drop_ahead};
-      if(may_retry) launch(1);
-      // (the deferred weights' first capture is a retry like the others: no removal of its faults,
-      // made again with it if kept with faults)
+      // (the deferred captures' first is a retry like the others: no removal of its faults, made
+      // again with it if kept with faults)
       const bool first_as_retry = capture_part == 2 && may_retry;
+      const auto stash = std::find_if(stashed.begin(), stashed.end(), [&](const Stashed_capture& c) {
+        return first_as_retry && c.gap == gap && c.pillow_free == run_pillow_free; });
+      // (none runs ahead of a capture kept from before: the loop below launches the one after
+      // the next if the next runs)
+      if(may_retry && stash == stashed.end()) launch(1);
       Capture first_capture(out, domain, features, stats, first_as_retry ? retry_options(0) : options_of(0));
       const auto first_t0 = std::chrono::steady_clock::now();
-      bool ran = first_capture.run(visitor);
-      std::size_t kept_log = log_capture(0, out, seconds_since(first_t0), false);
+      bool ran;
+      std::size_t kept_log;
+      if(stash != stashed.end()) {   // (it ran ahead before it was deferred)
+        out = std::move(stash->mesh);
+        stats = std::move(stash->stats);
+        ran = stash->ran;
+        kept_log = log_capture(0, out, stash->seconds, true);
+        stashed.erase(stash);
+      } else {
+        ran = first_capture.run(visitor);
+        kept_log = log_capture(0, out, seconds_since(first_t0), false);
+      }
       stats.capture_tries = 1;
       if(capture_cost == 0) capture_cost = (std::max)(out.number_of_cells(), std::size_t(1));
       if(ran && may_retry) {
@@ -685,9 +728,27 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
           // one of these after them: elephant at 0.75 times its test size, 178,667 cells, has
           // room for one retry; the weights 2.5 lift its first capture's 3 cells below 0.3, the
           // staircase 0.25 leaves 10)
-          if(capture_part == 1 && !all_retries && other_weights(choice) && std::get<3>(best) > 0 &&
+          // The capture without pillows waits too where the one with them leaves cells below 0.3
+          // as well as far faces (where it leaves far faces only, they may be a pillow's vertices
+          // short of the surface, which it reaches: it runs). fandisk at diagonal / 80: 39 far
+          // faces and 12 cells below 0.3 with pillows at 0.4, 38 and 10 without; 36 and 15 at
+          // 0.25; the mesh kept, 0.2 without pillows, the same in 4 captures instead of 6, 9.0 ->
+          // 6.2 s; anchor / 80 9 -> 8 captures, 15.5 -> 13.1 s; the same meshes on the 15 test
+          // files at their test sizes and 0.75 times them and on 12 at diagonal / 80. A capture
+          // deferred while it ran ahead is kept for the deferred ones (`stashed`): teapot at
+          // 0.75 times its test size on 2 threads 11.3 s, 13.4 s if run again, 10.4 s kept.
+          if(capture_part == 1 && !all_retries && std::get<3>(best) > 0 &&
+             (other_weights(choice) || (choice == 1 && first_had_pillows && std::get<1>(best) > 0)) &&
              (2 * closer_staircases + 1) * capture_cost <= retry_left) {
             weights_deferred = true;
+            pillow_free_deferred = !other_weights(choice);
+            if(ahead && ahead->choice == sequence[choice]) {
+              try {
+                workers.wait();
+                stashed.push_back({gap, pillow_free_deferred, std::move(ahead->mesh), std::move(ahead->stats), ahead->ran, ahead->seconds});
+              } catch(...) {}   // (run again if the deferred captures are made: there it throws)
+              ahead.reset();
+            }
             break;
           }
           if(!all_retries) {
@@ -758,6 +819,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
         }
       }
       drop_ahead();
+      if(weights_deferred && grid) kept_grids.push_back({gap, std::move(*grid), stats0, leaks, grid_status});
       if(ran) capture_log[kept_log].kept = true;
       if(run_ahead) domain.release_search_tree();
       if(!ran) status = Hex_meshing_3::Status::CANCELED;
@@ -801,6 +863,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   if(body_fitted) {
     log_staircase(gaps[0], 0, first_t0);
     staircase_log.back().weights_deferred = weights_deferred;
+    staircase_log.back().pillow_free_deferred = pillow_free_deferred;
   }
   std::size_t kept_staircase = 0;
   stats.staircase_tries = 1;
@@ -856,6 +919,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       const Hex_meshing_3::Status s = mesh_once(gaps[k], trial, st, lk);
       log_staircase(gaps[k], before, t0);
       staircase_log.back().weights_deferred = weights_deferred;
+      staircase_log.back().pillow_free_deferred = pillow_free_deferred;
       staircase_log.back().deferred_weights = part == 2;
       ++tries;
       if(s == Hex_meshing_3::Status::CANCELED) { status = s; return false; }
@@ -880,24 +944,29 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     }
     // The captures with other path weights lift cells below 0.3 and OpenFOAM faults, not far
     // faces: a staircase whose captures left far faces made the closer staircases before them
-    // (`capture_part` 1). If the mesh kept has cells below 0.3 or faults, they are made now on the
-    // grids of those staircases (made again), the one kept first, then the others in order,
+    // (`capture_part` 1; so did the capture without pillows, where the one with them left cells
+    // below 0.3 too). If the mesh kept has cells below 0.3 or faults, they are made now on the
+    // grids of those staircases (`kept_grids`), the one kept first, then the others in order,
     // while the best mesh has such cells and the budget has room. (fandisk at diagonal / 80: its
     // 38 far faces at 0.4 are there whatever the weights, which took 4 captures before the
     // closer staircases; the mesh kept, at 0.2, the same, 12.6 -> 8.7 s.) (Only after the three
     // staircases: the loop above stops early only where the mesh has neither, or the budget is
     // spent.)
-    std::vector<std::size_t> deferred;   // (their places in `gaps`)
+    std::vector<std::pair<std::size_t, bool>> deferred;   // (their places in `gaps`, and whether without pillows too)
     for(std::size_t i = 0; i < staircase_log.size(); ++i)
       if(staircase_log[i].weights_deferred)
-        deferred.push_back(std::size_t(std::find(std::begin(gaps), std::end(gaps), staircase_log[i].gap) - std::begin(gaps)));
-    std::stable_partition(deferred.begin(), deferred.end(), [&](std::size_t k) { return k == choice; });
-    for(const std::size_t k : deferred) {
+        deferred.push_back({std::size_t(std::find(std::begin(gaps), std::end(gaps), staircase_log[i].gap) - std::begin(gaps)),
+                            staircase_log[i].pillow_free_deferred});
+    std::stable_partition(deferred.begin(), deferred.end(), [&](const auto& d) { return d.first == choice; });
+    for(const auto& [k, pillow_free] : deferred) {
       if(status == Hex_meshing_3::Status::CANCELED || all_retries || !(std::get<0>(best) > 0 || std::get<1>(best) > 0) ||
          capture_cost > retry_left)
         break;
       retry_left -= capture_cost;
-      if(!another_mesh(k, 2)) break;
+      run_pillow_free = pillow_free;
+      const bool ok = another_mesh(k, 2);
+      run_pillow_free = false;
+      if(!ok) break;
     }
     stats.staircase_tries = tries;
     stats.staircase_gap = gaps[choice];

@@ -496,19 +496,40 @@ def main():
     for f in ["points", "faces", "owner", "neighbour", "boundary"]:
         check(filecmp.cmp(os.path.join(d, "case1/constant/polyMesh", f), os.path.join(d, "case2/constant/polyMesh", f),
                           shallow=False), f"polyMesh/{f} identical")
-    # whatever the number of threads: the cylinder at 0.9 times its default surface size runs the
-    # capture twice (with its feature pillows, then without: with two threads, the second is run
-    # ahead while the first runs: the same mesh)
+    # whatever the number of threads: anchor at --surface-size 0.045 (cells of 0.18, 4,300 to 4,900
+    # of them) runs 7 captures: at the staircases 0.4 and 0.25 the capture with pillows leaves far
+    # faces and cells below 0.3, so the one without pillows waits (`pillow_free_deferred`) until
+    # the closer staircase 0.2 is made; its mesh keeps 3 cells below 0.3, so the deferred captures
+    # then run on those two grids (kept). With two threads each capture without pillows runs ahead
+    # while the one with them runs, and is kept when it is deferred (not run again): the same mesh
     for k in (1, 2):
-        r = run([args.hexmesh, os.path.join(args.data, "cylinder.off"), "-o", os.path.join(d, f"t{k}.msh"),
-                 "--report", os.path.join(d, f"t{k}.json"), "-q", "--threads", str(k), "--surface-size", "0.0225"])
+        r = run([args.hexmesh, os.path.join(args.data, "anchor.off"), "-o", os.path.join(d, f"t{k}.msh"),
+                 "--report", os.path.join(d, f"t{k}.json"), "-q", "--threads", str(k), "--surface-size", "0.045"])
         check(r.returncode == 0, f"hexmesh --threads {k} runs")
     jt = [json.load(open(os.path.join(d, f"t{k}.json"))) for k in (1, 2)]
     check(jt[0]["options"]["threads"] == 1 and jt[1]["options"]["threads"] == min(2, os.cpu_count() or 1),
           f"the report's threads: {jt[0]['options']['threads']}, {jt[1]['options']['threads']}")
     check(jt[1]["boundary"]["capture_tries"] >= 2,
-          f"the cylinder retries the capture ({jt[1]['boundary']['capture_tries']} captures, "
+          f"anchor retries the capture ({jt[1]['boundary']['capture_tries']} captures, "
           f"{jt[1]['boundary']['staircase_tries']} staircases)")
+    def by_staircase(jr):   # (each staircase's captures, in order)
+        caps, out = jr["boundary"]["captures"], []
+        for x in jr["boundary"]["staircases"]:
+            out.append((x, caps[:x["captures"]]))
+            caps = caps[x["captures"]:]
+        return out
+    for jr in jt:
+        st = by_staircase(jr)
+        deferred_ahead = sum(c["ran_ahead"] for x, cs in st if x["deferred_weights"] for c in cs)
+        check([x["gap"] for x, _ in st] == [0.4, 0.25, 0.2, 0.4, 0.25] and
+              all(x["pillow_free_deferred"] and x["weights_deferred"] for x, _ in st[:2]) and
+              all(not c["feature_pillows"] for x, cs in st[3:] for c in cs) and
+              all(len(cs) == 1 and cs[0]["feature_pillows"] for x, cs in st[:2]) and
+              st[2][0]["kept"] and (deferred_ahead > 0) == (jr["options"]["threads"] > 1),
+              f"anchor, {jr['options']['threads']} thread(s): the captures without pillows deferred at 0.4 and 0.25, "
+              f"made after 0.2 on those grids: staircases (gap, captures, pillow-free deferred, deferred ones, kept) "
+              f"{[(x['gap'], len(cs), x['pillow_free_deferred'], x['deferred_weights'], x['kept']) for x, cs in st]}, "
+              f"{deferred_ahead} deferred captures kept from their run ahead")
     check(filecmp.cmp(os.path.join(d, "t1.msh"), os.path.join(d, "t2.msh"), shallow=False),
           "--threads 1 and --threads 2: MSH files identical")
     # the report's log of the captures: the same captures with the same results for any thread

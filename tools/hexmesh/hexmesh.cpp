@@ -92,17 +92,19 @@ struct Progress
   {
     // a second "refine": the mesh is made again with the staircase closer to the surface (the
     // staircase retries of `capture_retry_cells`)
-    // (after the three staircases, a grid made again for its deferred path weights)
     const auto refines = std::string(name) == "refine" ?
                          std::count_if(work.begin(), work.end(), [](const auto& w) { return w.first == "refine"; }) : 0;
+    // a "capture" right after another: after the three staircases, an earlier staircase's grid
+    // (kept) captured for its deferred captures
+    const bool deferred = std::string(name) == "capture" && !work.empty() && work.back().first == "capture";
     phase = name; phase_t0 = std::chrono::steady_clock::now(); last_percent = -1;
     work.push_back({name, cells});
-    if(!quiet && refines > 0 && refines < 3)
+    if(!quiet && refines > 0)
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: a boundary face stands beyond 1/4 surface size off the input "
                    "or a cell is below 0.3: the mesh is made again with the staircase closer to the surface\n";
-    if(!quiet && refines >= 3)
+    if(!quiet && deferred)
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: a cell is below 0.3 or an OpenFOAM fault is left: an earlier "
-                   "staircase's mesh is made again for its captures with other path weights (deferred)\n";
+                   "staircase's grid is captured again for its deferred captures (without pillows, other path weights)\n";
     if(!quiet) {
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: " << name << " (" << cells << " cells)";
       std::cerr << (tty ? "" : "\n") << std::flush;
@@ -285,7 +287,8 @@ int main(int argc, char** argv)
                  "capture leaves a cell below a scaled Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet "
                  "decomposition, it runs again (without the feature pillows, then with other weights of the feature paths: "
                  "those wait until the closer staircases are made where the captures before them leave boundary faces beyond "
-                 "1/4 of the surface size), "
+                 "1/4 of the surface size, and so does the one without pillows where the one with them also leaves a cell "
+                 "below 0.3), "
                  "and where the mesh kept still has such a cell or a boundary face beyond 1/4 of the surface size from the "
                  "input, the whole mesh is made again with the staircase 0.25, then 0.2 cell sizes off the surface instead "
                  "of 0.4 (not where those faces are its only faults and all stand over parts or gaps thinner than two "
@@ -572,11 +575,12 @@ int main(int argc, char** argv)
         }
         for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases)
           if(r.evaluated)
-            std::cerr << "hexmesh: staircase " << r.gap << (r.deferred_weights ? " (its deferred path weights)" : "") << ": "
+            std::cerr << "hexmesh: staircase " << r.gap << (r.deferred_weights ? " (its deferred captures)" : "") << ": "
                       << r.captures << " captures, " << r.far_faces << " faces beyond 1/4 surface size, "
                       << r.openfoam_faults << " OpenFOAM faults, " << r.cells_below_0_3 << " cells below 0.3, min "
                       << std::setprecision(3) << r.min_scaled_jacobian << ", " << r.seconds << " s" << std::setprecision(6)
-                      << (r.weights_deferred ? " (other path weights deferred: far faces)" : "") << (r.kept ? " (kept)" : "") << "\n";
+                      << (r.pillow_free_deferred ? " (the capture without pillows and other path weights deferred: far faces)" :
+                          r.weights_deferred ? " (other path weights deferred: far faces)" : "") << (r.kept ? " (kept)" : "") << "\n";
       }
     }
     if(!quiet && (stats.trimmed_cells || stats.disconnected_cells))
@@ -975,7 +979,8 @@ int main(int argc, char** argv)
             }
             for(const CGAL::Hex_meshing_3::Staircase_record& r : stats.staircases) {
               nlohmann::ordered_json c = {{"gap", r.gap}, {"captures", r.captures}, {"seconds", r.seconds}, {"evaluated", r.evaluated},
-                                          {"weights_deferred", r.weights_deferred}, {"deferred_weights", r.deferred_weights}};
+                                          {"weights_deferred", r.weights_deferred}, {"pillow_free_deferred", r.pillow_free_deferred},
+                                          {"deferred_weights", r.deferred_weights}};
               if(r.evaluated) {
                 c["far_faces"] = r.far_faces;
                 c["openfoam_faults"] = r.openfoam_faults;

@@ -136,7 +136,8 @@ struct Staircase_record
   double seconds = 0;                ///< wall seconds from its grid to its kept capture
   bool kept = false;                 ///< the mesh returned
   bool weights_deferred = false;     ///< its captures with other path weights were left until the closer staircases were made (its captures so far left boundary faces beyond a quarter surface size, which those weights do not reach)
-  bool deferred_weights = false;     ///< this mesh is those captures, made after the closer staircases for the staircase kept until then
+  bool pillow_free_deferred = false; ///< so was its capture without the feature pillows (the capture with them left cells below 0.3 as well as those far faces)
+  bool deferred_weights = false;     ///< this mesh is those captures (with the one without pillows where it was deferred), made after the closer staircases on this staircase's grid
 };
 
 /*!
