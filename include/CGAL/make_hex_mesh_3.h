@@ -518,8 +518,11 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   bool pillow_free_deferred = false, run_pillow_free = false;
   // A capture deferred while it ran ahead (with a parallel tag) is kept, to serve as the first of
   // the deferred captures if they are made (the same capture: the same grid, the same options), not
-  // run again (`stashed`: its staircase's gap, its place in the whole sequence, its mesh, ...)
-  struct Stashed_capture { double gap; bool pillow_free; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
+  // run again (`stashed`: its staircase's gap, its choice, its mesh, ...)
+  // (its choice: pillows, turn and snap factors; used only where it is the first of the deferred
+  // captures: a deferral at the weights 3.75 while they ran ahead would otherwise hand them over
+  // as the weights 2.5)
+  struct Stashed_capture { double gap; bool pillows; double turn, snap; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
   std::vector<Stashed_capture> stashed;
   // the grids of the staircases whose captures were deferred, kept for them (not made again): at
   // most two, of at most a fifth and a third of the retries' budget in cells
@@ -678,7 +681,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // again with it if kept with faults)
       const bool first_as_retry = capture_part == 2 && may_retry;
       const auto stash = std::find_if(stashed.begin(), stashed.end(), [&](const Stashed_capture& c) {
-        return first_as_retry && c.gap == gap && c.pillow_free == run_pillow_free; });
+        return first_as_retry && c.gap == gap && c.pillows == sequence[0].pillows && c.turn == sequence[0].turn && c.snap == sequence[0].snap; });
       // (none runs ahead of a capture kept from before: the loop below launches the one after
       // the next if the next runs)
       if(may_retry && stash == stashed.end()) launch(1);
@@ -745,7 +748,8 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
             if(ahead && ahead->choice == sequence[choice]) {
               try {
                 workers.wait();
-                stashed.push_back({gap, pillow_free_deferred, std::move(ahead->mesh), std::move(ahead->stats), ahead->ran, ahead->seconds});
+                stashed.push_back({gap, sequence[choice].pillows, sequence[choice].turn, sequence[choice].snap, std::move(ahead->mesh),
+                                   std::move(ahead->stats), ahead->ran, ahead->seconds});
               } catch(...) {}   // (run again if the deferred captures are made: there it throws)
               ahead.reset();
             }
