@@ -177,6 +177,7 @@ struct Meshing_statistics
   std::size_t polish_moves = 0;   ///< vertex moves of the final polish that raised the worst cells (below 0.35)
   std::size_t fidelity_moves = 0; ///< vertex moves after the polish (within its guards) that lowered by 2 % the largest distance to the surface of the centres of the vertex's boundary faces (relative to their local sizes; the faces of the hanging nodes it moves included), where it was beyond 0.2 (other faces of the vertex may get farther, not beyond that largest)
   std::size_t turn_moves = 0;     ///< moves of the vertices where a feature chain turns inside a face towards their curve, within the polish's guards (`Boundary_capture_3::turn_polish()`)
+  std::size_t turn_far_moves = 0; ///< of which made after the others, for a top face standing more than a quarter of the local size off the surface, with the guards' floor at 0.32 instead of 0.35
   std::size_t polish_patches = 0; ///< the polish's joint moves kept: patches around a cell below 0.3 whose worst cell got better
   std::size_t loosened_vertices = 0;   ///< curve/corner vertices of a cell below 0.3 that left their feature in a joint move kept (surface vertices since, within 0.2 / 0.1 local sizes of their curve / corner); `curve_vertices` and `corner_vertices` still count them
   std::size_t capture_tries = 0;            ///< boundary captures run (see `make_hex_mesh_3()`: more than one where the first left cells below a scaled Jacobian of 0.3, a cell concave for OpenFOAM or a face failing its tet decomposition)

@@ -517,6 +517,8 @@ public:
     int turn_passes = 6;                    ///< sweeps of `turn_polish()`, until one moves nothing (0: none)
     bool turn_joint = true;                 ///< ... where a turn vertex's step alone fails the guards, try it with the other vertices of its cells improved once (`joint_turn_move()`)
     double turn_joint_far = 0.3;            ///< ... after the first two sweeps, only for turn vertices still farther than this from their curve (x local size)
+    double turn_far_offset = 0.25;          ///< then the turn vertices whose top faces stand farther than this off the surface (x local size) ...
+    double turn_far_quality = 0.32;         ///< ... are tried again with the guards' floor at this instead of polish_quality (0: not)
     double turn_distance = 0.1;             ///< ... which brings the vertices where a chain turns inside a face no closer than this to their curve (x local size)
     int joint_passes = 10;                  ///< improve() passes over a released vertex's neighbours while it is held on the surface (0: no joint moves)
     double joint_quality = 0.25;            ///< ... kept if no cell of theirs falls below min(its quality, this)
@@ -2953,7 +2955,7 @@ private:
     }
     bool passes(const Boundary_capture_3& bc) const
     {
-      const double fq = bc.opt.polish_quality;
+      const double fq = bc.guard_floor > 0 ? bc.guard_floor : bc.opt.polish_quality;
       for(std::size_t i = 0; i < cells.size(); ++i) {
         const Index c = cells[i];
         const double floor = (std::min)(q0[i], fq);
@@ -3004,7 +3006,8 @@ private:
       for(Index w : near) t = (std::max)(t, last_input_move(w));
       return t;
     };
-    for(int pass = 0; pass < opt.turn_passes && !cancelled; ++pass) {
+    // (`far_pass`: the passes after those, see below)
+    auto sweep = [&](int pass, bool far_pass) {
       std::size_t moved = 0;
       for(std::size_t i = 0; i < turn_vertices.size(); ++i) {
         if(i % 64 == 63 && !visitor.go_further(1.0)) { cancelled = true; break; }
@@ -3012,6 +3015,7 @@ private:
         const int c = turn_curve[i];
         if(kind[v] != SURFACE || c < 0 || (v < left_feature.size() && left_feature[v])) continue;
         if(turn_failed[v] != 0 && inputs_moved(v) <= turn_failed[v]) continue;
+        if(far_pass && !(top_face_offset(v) > opt.turn_far_offset)) continue;
         const Vec3 x0 = P[v];
         const Vec3 target = clamp_planes(v, closest_on_curve(x0, c));
         const double d0 = norm(sub(target, x0)), keep = opt.turn_distance * local_size(v);
@@ -3043,7 +3047,23 @@ private:
         else turn_failed[v] = clock;
       }
       rep.turn_moves += moved;
-      if(moved == 0) break;
+      return moved;
+    };
+    for(int pass = 0; pass < opt.turn_passes && !cancelled; ++pass)
+      if(sweep(pass, false) == 0) break;
+    // Then the turn vertices whose top faces still stand farther than `turn_far_offset` local
+    // sizes off the surface (a face folded across the curve, beyond the fidelity goal of a quarter
+    // surface size) are tried again with the guards' floor at `turn_far_quality` instead of
+    // `polish_quality`: fidelity before quality, within the quality goal.
+    if(opt.turn_far_quality > 0 && opt.turn_far_quality < opt.polish_quality && !cancelled) {
+      turn_failed.assign(P.size(), 0);
+      guard_floor = opt.turn_far_quality;
+      struct Floor_back { double& f; ~Floor_back() { f = 0; } } floor_back{guard_floor};
+      for(int pass = 0; pass < opt.turn_passes && !cancelled; ++pass) {
+        const std::size_t moved = sweep(2, true);
+        rep.turn_far_moves += moved;
+        if(moved == 0) break;
+      }
     }
     use_polish = polish_before;
   }
@@ -4058,6 +4078,7 @@ private:
   std::vector<Index> turn_vertices;   // feature-chain vertices where the chain turns inside a face (not snapped)
   std::vector<int> turn_curve;        // ... the curve of each
   std::unordered_set<std::uint64_t> feature_edges;
+  double guard_floor = 0;   // (`turn_polish()`'s far passes: `Move_guard`'s floor instead of polish_quality)
   std::map<Index, std::vector<std::size_t>> pillow_sector_faces;   // a pillow's copy of a chain vertex -> the faces of its sector (into top_faces)
   std::map<Index, std::vector<Index>> pillow_twins;   // a pillowed chain vertex -> its copies, one per sector
   std::unordered_map<std::uint64_t, std::vector<Index>> curve_edge_triangles;   // an edge of a followed input curve -> its triangles
