@@ -519,10 +519,17 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   // A capture deferred while it ran ahead (with a parallel tag) is kept, to serve as the first of
   // the deferred captures if they are made (the same capture: the same grid, the same options), not
   // run again (`stashed`: its staircase's gap, its choice, its mesh, ...)
-  // (its choice: pillows, turn and snap factors; used only where it is the first of the deferred
-  // captures: a deferral at the weights 3.75 while they ran ahead would otherwise hand them over
-  // as the weights 2.5)
-  struct Stashed_capture { double gap; bool pillows; double turn, snap; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
+  // (used only where its choice is the first of the deferred captures: a deferral at the weights
+  // 3.75 while they ran ahead would otherwise hand them over as the weights 2.5)
+  // A capture's choice in the sequence of `mesh_once()`: feature pillows or not, and the factors
+  // of the feature paths' turn penalty and snap weight.
+  struct Choice
+  {
+    bool pillows;
+    double turn, snap;
+    bool operator==(const Choice& o) const { return pillows == o.pillows && turn == o.turn && snap == o.snap; }
+  };
+  struct Stashed_capture { double gap; Choice choice; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
   std::vector<Stashed_capture> stashed;
   // the grids of the staircases whose captures were deferred, kept for them (not made again): at
   // most two, of at most a fifth and a third of the retries' budget in cells
@@ -589,12 +596,6 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // the ratio 5 by default, then 2.5, 3.75, 1.67. Pillows lift the worst cells along convex
       // curves (the cube 0.57 -> 0.88, anchor 0.317 -> 0.334) but leave cells below 0.3 at some
       // (cube_nonmanifold's fin, fandisk_crack): there the captures without them are kept.
-      struct Choice
-      {
-        bool pillows;
-        double turn, snap;
-        bool operator==(const Choice& o) const { return pillows == o.pillows && turn == o.turn && snap == o.snap; }
-      };
       std::vector<Choice> sequence;
       if(copt.feature_pillows) sequence.push_back({true, 1, 1});
       for(const Choice& c : {Choice{false, 1, 1}, Choice{false, 1, 2}, Choice{false, 0.75, 1}, Choice{false, 1, 3}})
@@ -681,7 +682,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
       // again with it if kept with faults)
       const bool first_as_retry = capture_part == 2 && may_retry;
       const auto stash = std::find_if(stashed.begin(), stashed.end(), [&](const Stashed_capture& c) {
-        return first_as_retry && c.gap == gap && c.pillows == sequence[0].pillows && c.turn == sequence[0].turn && c.snap == sequence[0].snap; });
+        return first_as_retry && c.gap == gap && c.choice == sequence[0]; });
       // (none runs ahead of a capture kept from before: the loop below launches the one after
       // the next if the next runs)
       if(may_retry && stash == stashed.end()) launch(1);
@@ -748,8 +749,7 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
             if(ahead && ahead->choice == sequence[choice]) {
               try {
                 workers.wait();
-                stashed.push_back({gap, sequence[choice].pillows, sequence[choice].turn, sequence[choice].snap, std::move(ahead->mesh),
-                                   std::move(ahead->stats), ahead->ran, ahead->seconds});
+                stashed.push_back({gap, sequence[choice], std::move(ahead->mesh), std::move(ahead->stats), ahead->ran, ahead->seconds});
               } catch(...) {}   // (run again if the deferred captures are made: there it throws)
               ahead.reset();
             }

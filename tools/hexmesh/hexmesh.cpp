@@ -92,14 +92,14 @@ struct Progress
   {
     // a second "refine": the mesh is made again with the staircase closer to the surface (the
     // staircase retries of `capture_retry_cells`)
-    const auto refines = std::string(name) == "refine" ?
-                         std::count_if(work.begin(), work.end(), [](const auto& w) { return w.first == "refine"; }) : 0;
+    const bool again = std::string(name) == "refine" &&
+                       std::any_of(work.begin(), work.end(), [](const auto& w) { return w.first == "refine"; });
     // a "capture" right after another: after the three staircases, an earlier staircase's grid
     // (kept) captured for its deferred captures
     const bool deferred = std::string(name) == "capture" && !work.empty() && work.back().first == "capture";
     phase = name; phase_t0 = std::chrono::steady_clock::now(); last_percent = -1;
     work.push_back({name, cells});
-    if(!quiet && refines > 0)
+    if(!quiet && again)
       std::cerr << (tty ? "\r\033[K" : "") << "hexmesh: a boundary face stands beyond 1/4 surface size off the input "
                    "or a cell is below 0.3: the mesh is made again with the staircase closer to the surface\n";
     if(!quiet && deferred)

@@ -3006,7 +3006,8 @@ private:
       for(Index w : near) t = (std::max)(t, last_input_move(w));
       return t;
     };
-    // (`far_pass`: the passes after those, see below)
+    // (`far_pass`: the passes after those, see below; they count as later passes, `pass` >= 2,
+    // for the joint moves)
     auto sweep = [&](int pass, bool far_pass) {
       std::size_t moved = 0;
       for(std::size_t i = 0; i < turn_vertices.size(); ++i) {
@@ -3015,7 +3016,9 @@ private:
         const int c = turn_curve[i];
         if(kind[v] != SURFACE || c < 0 || (v < left_feature.size() && left_feature[v])) continue;
         if(turn_failed[v] != 0 && inputs_moved(v) <= turn_failed[v]) continue;
-        if(far_pass && !(top_face_offset(v) > opt.turn_far_offset)) continue;
+        // (its top faces' offset, where the far passes already measured it: -1 if not)
+        const double offset0 = far_pass ? top_face_offset(v) : -1.0;
+        if(far_pass && !(offset0 > opt.turn_far_offset)) continue;
         const Vec3 x0 = P[v];
         const Vec3 target = clamp_planes(v, closest_on_curve(x0, c));
         const double d0 = norm(sub(target, x0)), keep = opt.turn_distance * local_size(v);
@@ -3023,7 +3026,7 @@ private:
         guard.take(*this, v);
         const bool on_rim = onto_hole_rim(v, x0);
         // (nor may a face of it stand farther off the surface than max(before, fidelity_distance))
-        const double offset_cap = (std::max)(top_face_offset(v), opt.fidelity_distance);
+        const double offset_cap = (std::max)(offset0 >= 0 ? offset0 : top_face_offset(v), opt.fidelity_distance);
         // the steps, those that stay off a hole's border and come closer to the curve
         steps.clear();
         for(double t : {0.75, 0.5, 0.25}) {
