@@ -449,8 +449,11 @@ def main():
               "anchor_dupflip repaired into the closed 1050-triangle anchor (exact inside test)")
     if "elephant-with-holes.off" in reports:
         s = reports["elephant-with-holes.off"]["input_summary"]
-        check(s["boundary_edges"] == 1353 and not s["exact_inside_test"],
-              f"elephant-with-holes: 1353 boundary edges reported, winding number used ({s['boundary_edges']})")
+        r = reports["elephant-with-holes.off"]["repair"]
+        check(s["boundary_edges"] == 1353 and r["filled_holes"] > 100 and r["filled_rim_edges"] == 1353 and
+              s["exact_inside_test"],
+              f"elephant-with-holes: 1353 boundary edges reported, all round {r['filled_holes']} holes filled "
+              f"({r['fill_triangles']} triangles): closed, exact inside test ({s['exact_inside_test']})")
 
     # 2. dirty variants: inside volume within 2% of the clean original at the same settings
     print("[dirty variants keep the volume]")
@@ -559,12 +562,58 @@ def main():
     boundary = open(os.path.join(case, "constant", "polyMesh", "boundary")).read()
     check(re.search(r"zmin\s*\{\s*type\s+symmetryPlane;", boundary) is not None, "--patch-type zmin=symmetryPlane written")
 
-    # 4. a box with a hole, meshed around from outside: the leak is reported at the hole
-    print("[leaks]")
+    # 4. a box with a hole, meshed around from outside: the hole is filled (its cap is the top
+    # face's missing square); with --no-fill-holes the leak is reported at the hole
+    print("[holes filled]")
     box_with_hole(os.path.join(W, "holed_box.obj"))
-    rep = os.path.join(W, "leak.json")
+    rep = os.path.join(W, "filled.json")
     opts = ["--box", "-0.5,-0.5,-0.5,1.5,1.5,1.5", "--size", "0.1", "--surface-size", "0.05",
             "--region", "seed:-0.45,-0.45,-0.45"]
+    r = hexmesh(ctx, [os.path.join(W, "holed_box.obj")], [os.path.join(W, "filled.vtu")], opts + ["--strict"], rep)
+    j = json.load(open(rep))
+    check(j["repair"]["filled_holes"] == 1 and j["repair"]["filled_rim_edges"] == 4 and not j["leaks"] and
+          "1 hole filled" in r.stderr,
+          f"holed box: 1 hole filled ({j['repair']['fill_triangles']} triangles on {j['repair']['filled_rim_edges']} rim "
+          f"edges), no leak, --strict accepts it")
+    # (the staircase: the box's inside is not meshed, as it is with the leak cut off below)
+    check(6.6 < j["volume"] < 7.0, f"holed box: meshed volume {j['volume']:.4g} excludes the box's inside")
+    # an open box (its top face missing): the cap lies on the missing face, the box is a cube with
+    # sharp edges (without the fill, where the winding number is 0.5: a dome above the rim); a
+    # single open square is the rim of an open surface, not a hole (its fill would be as large as
+    # the surface): left open
+    v, q = box_quads(0, 0, 0, 1, 1, 1)
+    tris = []
+    for side in ["xmin", "xmax", "ymin", "ymax", "zmin"]:
+        a, b, c, d = q[side]
+        tris += [(a, b, c), (a, c, d)]
+    write_obj(os.path.join(W, "open_box.obj"), v, [("open_box", tris)])
+    vols = {}
+    for tag, extra in (("fill", []), ("nofill", ["--no-fill-holes"])):
+        rep = os.path.join(W, f"open_box_{tag}.json")
+        hexmesh(ctx, [os.path.join(W, "open_box.obj")], [os.path.join(W, f"open_box_{tag}.vtu")], ["-q"] + extra, rep,
+                body_fitted=True)
+        j = json.load(open(rep))
+        vols[tag] = j["volume"]
+        if tag == "fill":
+            fi = j["fidelity"]
+            check(j["repair"]["filled_holes"] == 1 and j["input_summary"]["exact_inside_test"] and
+                  abs(j["volume"] - 1) < 1e-9 and abs(fi["cap_area"] - 1) < 1e-9 and
+                  j["quality"]["scaled_jacobian"]["min"] > 0.8 and fi["faces_beyond_quarter_surface_size"] == 0 and
+                  j["features"]["corners"] == 8,
+                  f"open box filled: a closed cube (exact inside test), volume {j['volume']:.12g}, cap area "
+                  f"{fi['cap_area']:.12g}, {j['features']['corners']} corners, min scaled Jacobian "
+                  f"{j['quality']['scaled_jacobian']['min']:.3f}")
+    check(vols["nofill"] > 1.01, f"open box left open: the mesh bulges above the rim (volume {vols['nofill']:.4f})")
+    write_obj(os.path.join(W, "square.obj"), [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)], [("square", [(0, 1, 2), (0, 2, 3)])])
+    rep = os.path.join(W, "square.json")
+    hexmesh(ctx, [os.path.join(W, "square.obj")], [os.path.join(W, "square.vtu")],
+            ["-q", "--box", "-0.5,-0.5,-0.5,1.5,1.5,0.5", "--size", "0.25", "--region", "seed:-0.4,-0.4,-0.4"], rep)
+    j = json.load(open(rep))
+    check(j["repair"]["filled_holes"] == 0, f"an open square: its rim is no hole ({j['repair']['filled_holes']} filled)")
+
+    print("[leaks]")
+    opts = opts + ["--no-fill-holes"]
+    rep = os.path.join(W, "leak.json")
     r = hexmesh(ctx, [os.path.join(W, "holed_box.obj")], [os.path.join(W, "leak.vtu")], opts, rep)
     check("leak 1" in r.stderr and "hole" in r.stderr, f"the leak is reported on stderr: {r.stderr.strip()[-300:]}")
     j = json.load(open(rep))
@@ -700,7 +749,8 @@ def main():
     case = os.path.join(R, "tank_case")
     rep = os.path.join(R, "tank.json")
     r = hexmesh(ctx, [os.path.join(R, "tank.off")], [case], ["--box", "-1,-1,-1,5,5,5", "--size", "0.5",
-                                                           "--surface-size", "0.25", "--region", "seed:-0.9,-0.9,-0.9"], rep)
+                                                           "--surface-size", "0.25", "--region", "seed:-0.9,-0.9,-0.9",
+                                                           "--no-fill-holes"], rep)
     j = json.load(open(rep))
     cut = sum(l["cut_off_cells"] for l in j["leaks"])
     check(len(j["leaks"]) >= 1 and cut > 0 and "reachable only through it" in r.stderr,

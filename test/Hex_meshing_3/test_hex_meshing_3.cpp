@@ -388,14 +388,28 @@ void test_readers_and_errors()
       if(zc > 0.99) continue;
       t.push_back({{std::uint32_t(q[0]), std::uint32_t(q[1]), std::uint32_t(q[2])}});
     }
-    Domain open(p, t);
-    assert(!open.has_exact_inside_test());
+    Domain open(p, t, {}, {}, false);   // (its hole left open)
+    assert(!open.has_exact_inside_test() && open.input_summary().filled_holes == 0);
     const double w = open.winding_number(Point_3(0, 0, 0));
     std::cout << "open cube: winding number at the centre " << w << "\n";
     assert(w > 0.5 && w < 1.0);
     Mesh m;
     CGAL::make_hex_mesh_3(open, Criteria(0.3, 0.15), m, HP::body_fitted(false));
     check_mesh(m, "open cube");
+    // by default the hole is filled: a closed cube (the fill's triangles last, flagged, with the
+    // part of the rim's faces), exact inside test
+    Domain filled(p, t);
+    const auto& fs = filled.input_summary();
+    std::size_t fills = 0;
+    for(std::size_t i = 0; i < filled.number_of_triangles(); ++i) {
+      fills += filled.is_fill(i);
+      assert(filled.is_fill(i) == (i >= t.size()) && filled.filled_hole(i) == (i >= t.size() ? 1u : 0u));
+      assert(filled.patch(i) == 0);
+    }
+    std::cout << "open cube filled: " << fs.filled_holes << " hole, " << fs.fill_triangles << " triangles on "
+              << fs.filled_rim_edges << " rim edges of " << fs.boundary_edges << "\n";
+    assert(fs.filled_holes == 1 && fills == fs.fill_triangles && fills > 0 && fs.filled_rim_edges == fs.boundary_edges);
+    assert(fs.closed && filled.has_exact_inside_test() && filled.is_inside(Point_3(0, 0, 0)));
   }
   // duplicated points and degenerate triangles are merged / removed
   {
@@ -664,7 +678,7 @@ void test_dirty_input()
       s.part_of_triangle.push_back(0); s.part_of_triangle.push_back(0);
     }
     s.part_names = {"holed"};
-    Domain d(s);
+    Domain d(s, false);   // (the hole left open: filled, there is no leak)
     Mesh mesh;
     std::vector<HM::Region_leak> leaks;
     CGAL::make_hex_mesh_3(d, Criteria(0.1, 0.05), mesh,
@@ -765,7 +779,8 @@ void test_features()
               << " vertices, no corner\n";
   }
   {
-    Domain holes("data/elephant-with-holes.off");
+    // (the holes left open: the judgement of the open edges; filled, below)
+    Domain holes("data/elephant-with-holes.off", 1.0, false);
     Features f(holes);
     // every border edge is an open feature edge, but the rims of holes in the smooth skin (loops
     // mostly within the feature angle of the surface closing them): left out
@@ -782,7 +797,7 @@ void test_features()
     // 58% of its length (the arcs' ends and the vertical sides); the fill of the window follows
     // the cylinder, so the rim is no feature. The rim of an open end (a cup) meets the fill (a
     // flat disc) at 90 degrees: a feature.
-    auto cylinder = [](bool window, bool top) {
+    auto cylinder = [](bool window, bool top, bool fill = false) {
       const int n = 36, rows = 10;   // 10 degrees, 0.1 high
       std::vector<Point_3> p;
       std::vector<std::array<std::uint32_t, 3>> t;
@@ -805,7 +820,7 @@ void test_features()
         t.push_back({{b, at(i + 1, 0), at(i, 0)}});
         if(top) t.push_back({{b + 1, at(i, rows), at(i + 1, rows)}});
       }
-      return Domain(p, t);
+      return Domain(p, t, {}, {}, fill);
     };
     {
       Domain d = cylinder(true, true);
@@ -818,10 +833,31 @@ void test_features()
       assert(u.number_of_smooth_hole_rim_edges() == 0 && u.number_of_edges(Features::OPEN) == 36);
       std::cout << "  cylinder with a window: its 32 rim edges left out, " << w.curves().size()
                 << " curves; cup: its 36 rim edges kept\n";
+      // the same with the holes filled (the default): the window's rim meets its fill within the
+      // feature angle (no feature, no open edge), the cup's rim meets its flat fill at 90 degrees:
+      // 36 sharp edges, one closed curve with the bottom's rim
+      Domain df = cylinder(true, true, true), cf = cylinder(false, false, true);
+      Features wf(df), uf(cf);
+      assert(df.input_summary().filled_holes == 1 && cf.input_summary().filled_holes == 1);
+      assert(wf.number_of_smooth_hole_rim_edges() == 32 && wf.number_of_edges(Features::OPEN) == 0 && wf.curves().size() == 2);
+      assert(uf.number_of_smooth_hole_rim_edges() == 0 && uf.number_of_edges(Features::OPEN) == 0 &&
+             uf.number_of_edges(Features::SHARP) == 72 && uf.curves().size() == 2);
+      std::cout << "  filled: the window's rim left out, the cup's rim " << uf.number_of_edges(Features::SHARP) / 2
+                << " sharp edges\n";
+    }
+    {
+      // elephant-with-holes filled: every rim is a fill's, nearly all of them smooth
+      Domain filled("data/elephant-with-holes.off");
+      Features ff(filled);
+      std::cout << "  elephant-with-holes filled: " << filled.input_summary().filled_holes << " holes, "
+                << ff.number_of_smooth_hole_rim_edges() << " rim edges left out, " << ff.curves().size() << " curves\n";
+      assert(filled.input_summary().filled_rim_edges == filled.input_summary().boundary_edges);
+      assert(ff.number_of_edges(Features::OPEN) == 0 &&
+             ff.number_of_smooth_hole_rim_edges() >= 0.95 * double(filled.input_summary().boundary_edges));
     }
     // the teapot's rims (the spout's end, the body's rim under the lid) meet the fill of their
     // opening at an angle: they stay features
-    Domain teapot("data/teapot.off");
+    Domain teapot("data/teapot.off", 1.0, false);
     Features t(teapot);
     assert(t.number_of_smooth_hole_rim_edges() == 0 && t.number_of_edges(Features::OPEN) > 0);
     std::cout << "  teapot: " << t.number_of_edges(Features::OPEN) << " open edges, no hole rim left out\n";

@@ -229,7 +229,7 @@ int main(int argc, char** argv)
   std::string box_s, region = "inside", surface_size_s;
   int max_level = 12;
   std::size_t max_cells = 0;
-  bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = true;
+  bool force = false, quiet = false, strict = false, staircase = false, feature_pillows = true, fill_holes = true;
   std::size_t capture_retry_cells = 200000;
   bool all_capture_retries = false;
   int smoothing_sweeps = 8;
@@ -305,6 +305,10 @@ int main(int argc, char** argv)
                  "runs ahead on another thread while the one before it runs; the mesh is the same whatever the number "
                  "(default 0)")->check(CLI::Range(0, 4096));
   app.add_flag("--staircase", staircase, "keep the staircase of grid faces as the boundary: no buffer layer, no projection");
+  app.add_flag("--fill-holes,!--no-fill-holes", fill_holes, "close each hole of the surface (a loop of border edges "
+               "not along another one) with triangles on its rim's points (CGAL's triangulate_hole_polyline): the mesh "
+               "boundary lies on the fill there, counted as caps in the fidelity; without, the hole is closed where "
+               "the winding number is 0.5 (default: on)");
   app.add_flag("--strict", strict, "a leak of the seeded region (a hole in the surface) is an error: nothing is written");
   app.add_option("--patch-size", patch_size_rules, "REGEX=H[:HFINE]: cut cells meeting the input parts whose whole name "
                                                    "matches REGEX get at most H (HFINE where the surface bends beyond "
@@ -420,7 +424,7 @@ int main(int argc, char** argv)
     const std::size_t read_points = soup.points.size(), read_polygons = soup.polygons;
     const double t_read = since(t);
     t = std::chrono::steady_clock::now();
-    Domain domain(soup);
+    Domain domain(soup, fill_holes);
     const double t_repair = since(t);
     soup = HM::IO::Surface_soup<Point_3>();
 #if defined(__GLIBC__)
@@ -439,6 +443,9 @@ int main(int argc, char** argv)
     note(sum.reoriented_triangles, "triangles reoriented");
     note(sum.internal_triangles, "triangles wholly or partly inside the volume (overlapping parts) left out of the boundary");
     note(sum.split_triangles, "pieces of the partly inside ones kept");
+    if(sum.filled_holes)
+      repairs.push_back(std::to_string(sum.filled_holes) + " hole" + (sum.filled_holes > 1 ? "s" : "") + " filled (" +
+                        std::to_string(sum.fill_triangles) + " triangles on " + std::to_string(sum.filled_rim_edges) + " rim edges)");
     if(!quiet) {
       std::cerr << "hexmesh: read " << inputs.size() << " file" << (inputs.size() > 1 ? "s" : "") << ": "
                 << read_polygons << " polygons, " << read_points << " points, " << domain.patch_names().size()
@@ -447,7 +454,8 @@ int main(int argc, char** argv)
       for(std::size_t i = 0; i < repairs.size(); ++i) std::cerr << (i ? ", " : "") << repairs[i];
       std::cerr << " [" << t_repair << " s]\n";
       std::cerr << "hexmesh: surface: " << domain.number_of_triangles() << " triangles, " << sum.components
-                << " component" << (sum.components == 1 ? "" : "s") << ", " << sum.boundary_edges << " boundary edges, "
+                << " component" << (sum.components == 1 ? "" : "s") << ", " << sum.boundary_edges << " boundary edges"
+                << (sum.filled_rim_edges ? " (" + std::to_string(sum.filled_rim_edges) + " round filled holes)" : std::string()) << ", "
                 << sum.non_manifold_edges << " non-manifold edges; inside test: "
                 << (domain.has_exact_inside_test() ? "exact (closed surface)" : "winding number (open or inconsistent surface)")
                 << "\n";
@@ -789,7 +797,7 @@ int main(int argc, char** argv)
                       {"threads", used_threads},
                       {"feature_angle", feature_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
-                      {"max_cells", max_cells}, {"region", region}, {"strict", strict},
+                      {"max_cells", max_cells}, {"region", region}, {"strict", strict}, {"fill_holes", fill_holes},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},
                       {"patch_name", patch_name_rules}, {"patch_size", patch_size_rules}, {"patch_type", patch_type_rules}};
       j["input_summary"] = {{"polygons_read", read_polygons}, {"points_read", read_points},
@@ -801,7 +809,9 @@ int main(int argc, char** argv)
                      {"duplicate_triangles", sum.duplicate_triangles}, {"reversed_duplicates", sum.reversed_duplicates},
                      {"sheet_triangles", sum.sheet_triangles}, {"sheet_reoriented", sum.sheet_reoriented},
                      {"sheet_back_parts", sum.sheet_back_parts}, {"reoriented_triangles", sum.reoriented_triangles},
-                     {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles}};
+                     {"internal_triangles", sum.internal_triangles}, {"split_triangle_pieces_kept", sum.split_triangles},
+                     {"filled_holes", sum.filled_holes}, {"fill_triangles", sum.fill_triangles},
+                     {"filled_rim_edges", sum.filled_rim_edges}};
       j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
                        {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},
                        {"open_edges", features.number_of_edges(FC::OPEN)},

@@ -115,5 +115,14 @@ public:
   const std::vector<std::array<std::uint32_t, 3>>& triangle_indices() const;
   const std::vector<Point_3>& points() const;
 
+  /// was triangle `i` added to close a hole of the input (not the input's)? The boundary faces on
+  /// such triangles are caps in the fidelity measures, and their input->mesh samples skip them.
+  bool is_fill(std::size_t i) const;
+  /// the hole triangle `i` fills, from 1 (0: an input triangle); the feature curves judge the rim
+  /// of each hole as a whole
+  std::size_t filled_hole(std::size_t i) const;
+  /// the point of the surface closest to `p` and the index of a triangle it lies on
+  std::pair<Point_3, std::size_t> closest_point_and_triangle(const Point_3& p) const;
+
   /// @}
 };

@@ -57,7 +57,9 @@ public:
     /// opposite directions (a crease crossing a crack), are joined by a `SEAM` edge: one curve.
     /// A closed loop of open edges at least half of whose length has its faces within the feature
     /// angle of the surface that would close it is the rim of a hole in a smooth surface: no
-    /// feature either (two-sided sheets keep their borders).
+    /// feature either (two-sided sheets keep their borders). The rim of a hole the domain filled
+    /// (`Surface_domain_3::is_fill()`) is judged the same way against its fill: a feature all
+    /// along (sharp edges) unless it is smooth; the edges inside a fill are never features.
     bool open_edges = true;
     bool non_manifold_edges = true;
     bool patch_borders = true;
@@ -116,8 +118,8 @@ public:
   /// the open edges left out because they are one side of a seam or a crack across which the
   /// surface is smooth (see `Options::open_edges`)
   std::size_t number_of_smooth_seam_edges() const { return m_smooth_seam_edges; }
-  /// the open edges left out because they are the rim of a hole in a smooth surface (see
-  /// `Options::open_edges`)
+  /// the open edges left out because they are the rim of a hole in a smooth surface, and the rim
+  /// edges of the holes the domain filled left out likewise (see `Options::open_edges`)
   std::size_t number_of_smooth_hole_rim_edges() const { return m_hole_rim_edges; }
   /// the `SEAM` edges that join curve ends across a seam or a crack
   std::size_t number_of_seam_bridges() const { return m_seam_bridges; }
@@ -175,6 +177,10 @@ private:
     std::sort(half.begin(), half.end(), [](const Half& a, const Half& b) {
       return a.key != b.key ? a.key < b.key : a.face < b.face;
     });
+    // the rims of the holes the domain filled: per hole (from 1), its rim's length and the length
+    // whose input face meets the fill within the feature angle; per rim edge, its hole
+    std::vector<double> rim_length, rim_smooth;
+    std::vector<std::pair<std::size_t, std::size_t>> rim_edges;   // (index in m_edges, hole)
     for(std::size_t i = 0; i < half.size();) {
       std::size_t j = i;
       while(j < half.size() && half[j].key == half[i].key) ++j;
@@ -188,7 +194,21 @@ private:
         double c = dot(normal[h.face], normal[g.face]);
         if(d.is_two_sided(h.face) || d.is_two_sided(g.face)) c = std::abs(c);   // sheets: unsigned
         else if(h.forward == g.forward) c = -c;   // inconsistent orientation across the edge
-        if(c <= cos_max) kind |= SHARP;
+        const std::size_t hole = (std::max)(d.filled_hole(h.face), d.filled_hole(g.face));
+        if(d.is_fill(h.face) && d.is_fill(g.face)) {
+          // inside a fill: never a feature
+        } else if(hole > 0) {
+          // a filled hole's rim: judged with the whole rim below (provisionally a feature)
+          if(rim_length.size() <= hole) { rim_length.resize(hole + 1, 0.0); rim_smooth.resize(hole + 1, 0.0); }
+          const V p = vec(m_points[Index(h.key >> 32)]), q = vec(m_points[Index(h.key & 0xffffffffu)]);
+          const double len = std::sqrt(dot(sub(q, p), sub(q, p)));
+          rim_length[hole] += len;
+          if(c > cos_max) rim_smooth[hole] += len;
+          if(o.open_edges) {
+            rim_edges.push_back({m_edges.size(), hole});
+            kind |= SHARP;
+          }
+        } else if(c <= cos_max) kind |= SHARP;
         if(judge)
           slot_angle[3 * h.face + h.slot] = slot_angle[3 * g.face + g.slot] =
             float(std::acos((std::max)(-1.0, (std::min)(1.0, c))) * 180.0 / CGAL_PI);
@@ -212,6 +232,18 @@ private:
       }
       i = j;
     }
+    // a filled hole's rim at least half of whose length meets the fill within the feature angle
+    // is the rim of a hole in a smooth surface: no feature, the capture closes the hole smoothly;
+    // other rims (the fill meets them at an angle: an open box's rim) are features all along
+    // (as `mark_smooth_hole_rims()` judges the holes left open)
+    bool dropped = false;
+    for(const auto& re : rim_edges)
+      if(rim_smooth[re.second] >= 0.5 * rim_length[re.second]) {
+        Edge& e = m_edges[re.first];
+        e.kind = std::uint8_t(e.kind & ~SHARP);
+        if(e.kind == 0) { ++m_hole_rim_edges; dropped = true; }
+      }
+    if(dropped && open_edges.empty()) remove_dropped_edges(edge_faces, edge_consistent);
     if(!open_edges.empty()) {
       mark_smooth_seams(d, cos_max, normal, open_edges);
       mark_smooth_hole_rims(d, cos_max, normal, open_edges);

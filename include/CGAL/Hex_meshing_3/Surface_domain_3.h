@@ -12,6 +12,7 @@
 #include <CGAL/Hex_meshing_3/Status.h>
 #include <CGAL/Hex_meshing_3/IO/read_surface.h>
 #include <CGAL/Hex_meshing_3/internal/Fast_winding_number_3.h>
+#include <CGAL/Hex_meshing_3/internal/hole_fill.h>
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -52,6 +53,16 @@ namespace Hex_meshing_3 {
  * the generalised winding number at 0.5, a floating-point estimate (the one documented exception
  * to exact predicates), computed hierarchically (far field by a second-order dipole expansion).
  *
+ * Holes: unless told not to (`fill_holes = false`), the holes of the surface are closed by
+ * triangles that are not the input's (`is_fill()`): each loop of border edges (of one-sided
+ * triangles, not along another border edge - a seam or a crack) is filled by CGAL's
+ * `Polygon_mesh_processing::triangulate_hole_polyline()`, without new vertices (see
+ * `internal::fill_holes()` for the loops left open). The fill bounds the volume like the input
+ * (the grid stops there, the mesh boundary lies on it, the inside test counts it) and has the part
+ * of the faces round its rim; the boundary's faces on a fill are caps (`Boundary_fidelity`), and
+ * the feature curves judge each rim as a whole (`Feature_curves_3`). A surface closed by its fills
+ * (and free of self-intersections) gets the exact inside test.
+ *
  * \tparam GeomTraits a model of `Kernel` with exact predicates
  */
 template <typename GeomTraits>
@@ -80,7 +91,10 @@ public:
     std::size_t internal_triangles = 0;     ///< left out of the boundary, wholly or partly: inside the volume on both sides (overlapping parts)
     std::size_t split_triangles = 0;        ///< pieces kept of the partly inside triangles (split at edge midpoints)
     std::size_t components = 0;             ///< edge-connected components (sheets excluded)
-    std::size_t boundary_edges = 0;         ///< edges of one face: holes, cracks, open rims (after repair)
+    std::size_t boundary_edges = 0;         ///< edges of one face: holes, cracks, open rims (after repair, before the holes are filled)
+    std::size_t filled_holes = 0;           ///< holes closed by fill triangles (see `Surface_domain_3`)
+    std::size_t fill_triangles = 0;         ///< the triangles added to fill them
+    std::size_t filled_rim_edges = 0;       ///< the boundary edges on their rims
     std::size_t non_manifold_edges = 0;     ///< edges of more than two faces (after repair)
     bool closed = false;                    ///< a closed, manifold, consistently oriented mesh
     bool self_intersecting = false;         ///< tested only when `closed`
@@ -93,24 +107,26 @@ public:
 
   /*!
    * builds the domain from a triangle soup. `patch_of_triangle` (empty: all 0) gives each triangle
-   * a part index into `patch_names` (empty: one part named `"surface"`).
+   * a part index into `patch_names` (empty: one part named `"surface"`). `fill_holes`: whether the
+   * holes are closed (see the class description).
    * \throws Input_error if no non-degenerate triangle remains or a coordinate is not finite.
    */
   Surface_domain_3(std::vector<Point_3> points,
                    std::vector<Triangle_indices> triangles,
                    std::vector<int> patch_of_triangle = {},
-                   std::vector<std::string> patch_names = {})
+                   std::vector<std::string> patch_names = {},
+                   bool fill_holes = true)
   {
-    init(std::move(points), std::move(triangles), std::move(patch_of_triangle), std::move(patch_names));
+    init(std::move(points), std::move(triangles), std::move(patch_of_triangle), std::move(patch_names), fill_holes);
   }
 
   /*!
    * builds the domain from a soup read by `IO::read_surface()`; its parts become the domain's parts.
    * \throws Input_error
    */
-  explicit Surface_domain_3(const IO::Surface_soup<Point_3>& soup)
+  explicit Surface_domain_3(const IO::Surface_soup<Point_3>& soup, bool fill_holes = true)
   {
-    init(soup.points, soup.triangles, soup.part_of_triangle, soup.part_names);
+    init(soup.points, soup.triangles, soup.part_of_triangle, soup.part_names, fill_holes);
   }
 
   /*!
@@ -118,12 +134,12 @@ public:
    * otherwise the file is one part named after its base name.
    * \throws Input_error
    */
-  explicit Surface_domain_3(const std::string& filename, double scale = 1.0)
+  explicit Surface_domain_3(const std::string& filename, double scale = 1.0, bool fill_holes = true)
   {
     IO::Surface_soup<Point_3> soup;
     IO::read_surface(filename, soup, scale);
     init(std::move(soup.points), std::move(soup.triangles), std::move(soup.part_of_triangle),
-         std::move(soup.part_names));
+         std::move(soup.part_names), fill_holes);
   }
   /// @}
 
@@ -232,6 +248,10 @@ public:
 
   /// is triangle `i` part of a zero-thickness sheet (two-sided: it bounds no volume)?
   bool is_two_sided(std::size_t i) const { return m_two_sided[i]; }
+  /// was triangle `i` added to fill a hole (not the input's)?
+  bool is_fill(std::size_t i) const { return m_fill[i] != 0; }
+  /// the hole that triangle `i` fills, from 1 (0: an input triangle)
+  std::size_t filled_hole(std::size_t i) const { return m_fill[i]; }
   /// `true` if `is_inside()` is exact (closed, consistently oriented, not self-intersecting input)
   bool has_exact_inside_test() const { return bool(m_side); }
   /// @}
@@ -306,6 +326,12 @@ public:
   {
     return std::size_t(tree().closest_point_and_primitive(p).second - m_triangles.begin());
   }
+  /// the point of the surface nearest to `p` and the index of a triangle it lies on
+  std::pair<Point_3, std::size_t> closest_point_and_triangle(const Point_3& p) const
+  {
+    const auto r = tree().closest_point_and_primitive(p);
+    return {r.first, std::size_t(r.second - m_triangles.begin())};
+  }
   /// squared distance from `p` to the surface
   FT squared_distance(const Point_3& p) const { return tree().squared_distance(p); }
   /// the first point where the ray from `p` in direction `d` meets the surface, if any (the
@@ -346,7 +372,7 @@ private:
   }
 
   void init(std::vector<Point_3> points, std::vector<Triangle_indices> triangles,
-            std::vector<int> patch_of_triangle, std::vector<std::string> patch_names)
+            std::vector<int> patch_of_triangle, std::vector<std::string> patch_names, bool fill_holes)
   {
     namespace PMP = CGAL::Polygon_mesh_processing;
     m_summary.input_points = points.size();
@@ -392,15 +418,24 @@ private:
       throw Input_error("surface: no non-degenerate triangle", Input_error_cause::NO_SURFACE);
     m_patch_names = std::move(patch_names);
     repair(tris, parts);
+    m_fill.assign(m_indices.size(), 0);
+    if(fill_holes && m_summary.boundary_edges > 0) fill_input_holes();
 
     // closed, consistently oriented, no self-intersection: exact inside test
-    if(m_summary.sheet_triangles == 0 && m_summary.boundary_edges == 0 && m_summary.non_manifold_edges == 0) {
+    if(m_summary.sheet_triangles == 0 && m_summary.boundary_edges == m_summary.filled_rim_edges && m_summary.non_manifold_edges == 0) {
+      // (on the points the triangles use: an unused point would be an isolated vertex, which
+      // makes the mesh invalid for the orientation test)
+      std::vector<std::size_t> compact(m_points.size(), std::size_t(-1));
+      std::vector<Point_3> used;
       std::vector<std::vector<std::size_t>> tri_polys(m_indices.size());
       for(std::size_t i = 0; i < m_indices.size(); ++i)
-        tri_polys[i].assign(m_indices[i].begin(), m_indices[i].end());
+        for(std::uint32_t v : m_indices[i]) {
+          if(compact[v] == std::size_t(-1)) { compact[v] = used.size(); used.push_back(m_points[v]); }
+          tri_polys[i].push_back(compact[v]);
+        }
       if(PMP::is_polygon_soup_a_polygon_mesh(tri_polys)) {
         m_mesh = std::make_unique<Mesh>();
-        PMP::polygon_soup_to_polygon_mesh(m_points, tri_polys, *m_mesh);
+        PMP::polygon_soup_to_polygon_mesh(used, tri_polys, *m_mesh);
         if(CGAL::is_closed(*m_mesh) && CGAL::is_triangle_mesh(*m_mesh)) {
           m_summary.self_intersecting = PMP::does_self_intersect(*m_mesh);
           if(!m_summary.self_intersecting) {
@@ -510,6 +545,7 @@ private:
     std::vector<Triangle_indices> out_idx;
     std::vector<int> out_patch, out_back;
     std::vector<bool> out_sided;
+    std::vector<std::uint32_t> out_fill;
     std::vector<char> changed(n, 0);
     std::size_t left_out = 0;
     std::function<void(const V&, const V&, const V&, int, std::size_t)> split =
@@ -525,6 +561,7 @@ private:
           t[std::size_t(i)] = ins.first->second;
         }
         out_idx.push_back(t); out_patch.push_back(m_patch[f]); out_back.push_back(m_back_patch[f]); out_sided.push_back(m_two_sided[f]);
+        out_fill.push_back(m_fill[f]);
         return;
       }
       auto mid = [](const V& p, const V& q) { return V{{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2}}; };
@@ -563,22 +600,44 @@ private:
     for(std::size_t i = 0; i < n; ++i) {
       if(changed[i]) continue;
       m_indices[j] = m_indices[i]; m_triangles[j] = m_triangles[i];
-      m_patch[j] = m_patch[i]; m_back_patch[j] = m_back_patch[i]; m_two_sided[j] = m_two_sided[i];
+      m_patch[j] = m_patch[i]; m_back_patch[j] = m_back_patch[i]; m_two_sided[j] = m_two_sided[i]; m_fill[j] = m_fill[i];
       ++j;
     }
     m_summary.internal_triangles = left_out;
     m_summary.split_triangles = out_idx.size();
-    m_indices.resize(j); m_triangles.resize(j); m_patch.resize(j); m_back_patch.resize(j); m_two_sided.resize(j);
+    m_indices.resize(j); m_triangles.resize(j); m_patch.resize(j); m_back_patch.resize(j); m_two_sided.resize(j); m_fill.resize(j);
     for(std::size_t i = 0; i < out_idx.size(); ++i) {
       const Triangle_indices& t = out_idx[i];
       Triangle_3 tri(m_points[t[0]], m_points[t[1]], m_points[t[2]]);
       if(tri.is_degenerate()) continue;
       m_indices.push_back(t); m_triangles.push_back(tri);
       m_patch.push_back(out_patch[i]); m_back_patch.push_back(out_back[i]); m_two_sided.push_back(out_sided[i]);
+      m_fill.push_back(out_fill[i]);
     }
     if(m_indices.empty()) throw Input_error("surface: every triangle lies inside the volume (nothing bounds it)", Input_error_cause::NO_SURFACE);
     m_bbox = Bbox_3();
     for(const Triangle_3& t : m_triangles) m_bbox += t.bbox();
+  }
+
+  // The holes filled (`internal::fill_holes()`, the seam tolerance of the capture): the fill
+  // triangles are appended, with the part of their rim's first face on both sides.
+  void fill_input_holes()
+  {
+    Bbox_3 b;
+    for(const Triangle_indices& t : m_indices) for(std::uint32_t v : t) b += m_points[v].bbox();
+    std::vector<bool> skip(m_two_sided.begin(), m_two_sided.end());
+    const internal::Hole_fill f = internal::fill_holes<GeomTraits>(m_points, m_indices, skip, internal::seam_tolerance(b));
+    for(std::size_t i = 0; i < f.triangles.size(); ++i) {
+      const int part = m_patch[f.loop_face[f.loop_of[i]]];
+      m_indices.push_back(f.triangles[i]);
+      m_patch.push_back(part);
+      m_back_patch.push_back(part);
+      m_two_sided.push_back(false);
+      m_fill.push_back(f.loop_of[i] + 1);
+    }
+    m_summary.filled_holes = f.loop_face.size();
+    m_summary.fill_triangles = f.triangles.size();
+    m_summary.filled_rim_edges = f.rim_edges;
   }
 
   static std::uint64_t edge_key(std::uint32_t a, std::uint32_t b)
@@ -926,6 +985,7 @@ private:
   std::vector<Triangle_3> m_triangles;
   std::vector<int> m_patch, m_back_patch;
   std::vector<bool> m_two_sided;
+  std::vector<std::uint32_t> m_fill;   // per triangle: 0 (the input's), or the hole it fills, from 1
   std::vector<std::uint8_t> m_feature_mask;   // bit k: edge (k, k+1) of the triangle is a feature
   bool m_has_features = false;
   typedef typename std::vector<typename GeomTraits::Segment_3>::const_iterator Segment_iterator;

@@ -54,7 +54,7 @@ struct Boundary_fidelity
   double mean_sample_distance = 0;
   std::array<double, 3> worst_face_location = {{0, 0, 0}};     ///< where the mesh is farthest
   std::array<double, 3> worst_sample_location = {{0, 0, 0}};   ///< where the input is farthest
-  std::size_t cap_faces = 0;         ///< faces capping holes of the input (not counted in the face distances): whose centre's nearest input point lies on a border edge, not counting the border edges that run along another one (a seam or crack, `make_hex_mesh_3()`)
+  std::size_t cap_faces = 0;         ///< faces capping holes of the input (not counted in the face distances): whose centre's nearest point of the domain is on a triangle filling a hole (`Surface_domain_3::is_fill()`) or on a border edge, not counting the border edges that run along another one (a seam or crack, `make_hex_mesh_3()`)
   double cap_area = 0;               ///< their area
   /// mesh -> input, per surface face (caps left out, in the order of `mesh.boundary_faces`): the
   /// largest distance of its corners and centre, and the point where it is reached
@@ -140,8 +140,10 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     boundary.emplace_back(a, c, d);
     const Point_3 centre((a.x() + b.x() + c.x() + d.x()) / 4, (a.y() + b.y() + c.y() + d.y()) / 4,
                          (a.z() + b.z() + c.z() + d.z()) / 4);
-    const Point_3 centre_closest = domain.closest_point(centre);
-    if(border_tree && CGAL::to_double(border_tree->squared_distance(centre_closest)) <= tiny * tiny) {
+    const auto centre_near = domain.closest_point_and_triangle(centre);
+    const Point_3& centre_closest = centre_near.first;
+    if(domain.is_fill(centre_near.second) ||
+       (border_tree && CGAL::to_double(border_tree->squared_distance(centre_closest)) <= tiny * tiny)) {
       ++r.cap_faces;
       r.cap_area += 0.5 * std::sqrt(CGAL::to_double(CGAL::cross_product(c - a, d - b).squared_length()));
       continue;
@@ -160,8 +162,9 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     r.face_distances.push_back({worst, where});
     r.face_indices.push_back(std::size_t(&f - mesh.boundary_faces.data()));
     r.face_worst_points.push_back(at);
-    r.face_worst_on_border.push_back(at < 4 && worst > 0 && border_tree &&
-                                     CGAL::to_double(border_tree->squared_distance(closest_of_vertex(std::size_t(f.vertices[at])))) <= tiny * tiny);
+    r.face_worst_on_border.push_back(at < 4 && worst > 0 &&
+                                     ((border_tree && CGAL::to_double(border_tree->squared_distance(closest_of_vertex(std::size_t(f.vertices[at])))) <= tiny * tiny) ||
+                                      domain.is_fill(domain.closest_triangle(*pts[at]))));
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);
@@ -175,8 +178,8 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   const std::size_t nt = domain.number_of_triangles();
   std::vector<double> cumulative(nt);
   double total = 0;
-  for(std::size_t i = 0; i < nt; ++i) {
-    total += std::sqrt(CGAL::to_double(domain.triangle(i).squared_area()));
+  for(std::size_t i = 0; i < nt; ++i) {   // (the input's triangles: not the fills of its holes)
+    if(!domain.is_fill(i)) total += std::sqrt(CGAL::to_double(domain.triangle(i).squared_area()));
     cumulative[i] = total;
   }
   if(!(total > 0)) return r;
@@ -361,12 +364,16 @@ Surface_topology boundary_topology(const PolyhedralMesh& pm)
 
 /*!
  * \ingroup PkgHexMeshing3Quality
- * \brief the topology of the domain's (repaired) triangles.
+ * \brief the topology of the domain's (repaired) input triangles: without the triangles that
+ * fill its holes (`Surface_domain_3::is_fill()`), so that a hole counts as one.
  */
 template <typename Domain>
 Surface_topology surface_topology(const Domain& domain)
 {
-  return internal::polygon_topology(domain.triangle_indices());
+  std::vector<typename Domain::Triangle_indices> input;
+  const auto& all = domain.triangle_indices();
+  for(std::size_t i = 0; i < all.size(); ++i) if(!domain.is_fill(i)) input.push_back(all[i]);
+  return internal::polygon_topology(input);
 }
 
 /*!
