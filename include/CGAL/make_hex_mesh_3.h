@@ -110,7 +110,9 @@ inline std::size_t available_threads() { return 1; }
  *   half a cell out from the staircase and is not projected - unless that border edge runs along
  *   another border edge within a thousandth of the input's diagonal (and a quarter of its
  *   length): a seam between parts that have their own copies of the vertices, or a crack, which
- *   borders no hole (`Boundary_fidelity::cap_faces` follows the same rule); the cap vertices at
+ *   borders no hole (`Boundary_fidelity::cap_faces` follows the same rule, and also counts the
+ *   faces on the triangles that fill holes: `Surface_domain_3` fills the holes it can, and the
+ *   images on a fill are projected onto it like any other surface point); the cap vertices at
  *   the border of a two-sided sheet (a baffle, round which the buffer wraps) are moved onto it
  *   after the optimisation, as far as no cell of theirs falls below min(its quality, 0.35); a
  *   surface vertex within two cells of a hole's border (a simple closed loop of open edges, not

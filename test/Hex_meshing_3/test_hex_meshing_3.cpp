@@ -839,8 +839,9 @@ void test_features()
       Domain df = cylinder(true, true, true), cf = cylinder(false, false, true);
       Features wf(df), uf(cf);
       assert(df.input_summary().filled_holes == 1 && cf.input_summary().filled_holes == 1);
-      assert(wf.number_of_smooth_hole_rim_edges() == 32 && wf.number_of_edges(Features::OPEN) == 0 && wf.curves().size() == 2);
-      assert(uf.number_of_smooth_hole_rim_edges() == 0 && uf.number_of_edges(Features::OPEN) == 0 &&
+      assert(wf.number_of_smooth_filled_rim_edges() == 32 && wf.number_of_smooth_hole_rim_edges() == 0 &&
+             wf.number_of_edges(Features::OPEN) == 0 && wf.curves().size() == 2);
+      assert(uf.number_of_smooth_filled_rim_edges() == 0 && uf.number_of_edges(Features::OPEN) == 0 &&
              uf.number_of_edges(Features::SHARP) == 72 && uf.curves().size() == 2);
       std::cout << "  filled: the window's rim left out, the cup's rim " << uf.number_of_edges(Features::SHARP) / 2
                 << " sharp edges\n";
@@ -850,10 +851,10 @@ void test_features()
       Domain filled("data/elephant-with-holes.off");
       Features ff(filled);
       std::cout << "  elephant-with-holes filled: " << filled.input_summary().filled_holes << " holes, "
-                << ff.number_of_smooth_hole_rim_edges() << " rim edges left out, " << ff.curves().size() << " curves\n";
+                << ff.number_of_smooth_filled_rim_edges() << " rim edges left out, " << ff.curves().size() << " curves\n";
       assert(filled.input_summary().filled_rim_edges == filled.input_summary().boundary_edges);
       assert(ff.number_of_edges(Features::OPEN) == 0 &&
-             ff.number_of_smooth_hole_rim_edges() >= 0.95 * double(filled.input_summary().boundary_edges));
+             ff.number_of_smooth_filled_rim_edges() >= 0.95 * double(filled.input_summary().boundary_edges));
     }
     // the teapot's rims (the spout's end, the body's rim under the lid) meet the fill of their
     // opening at an angle: they stay features

@@ -524,6 +524,8 @@ int main(int argc, char** argv)
                 << "across it or the second side of a crease; " << features.number_of_seam_bridges() << " curve ends joined across it)";
     if(!quiet && features.number_of_smooth_hole_rim_edges())
       std::cerr << " (" << features.number_of_smooth_hole_rim_edges() << " open edges left out: rims of holes in a smooth surface)";
+    if(!quiet && features.number_of_smooth_filled_rim_edges())
+      std::cerr << " (" << features.number_of_smooth_filled_rim_edges() << " rim edges of filled holes left out: smooth with their fill)";
     if(!quiet)
       std::cerr << "; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";
@@ -816,8 +818,9 @@ int main(int argc, char** argv)
                        {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},
                        {"open_edges", features.number_of_edges(FC::OPEN)},
                        {"input_open_edges", features.number_of_edges(FC::OPEN) + features.number_of_smooth_seam_edges() +
-                                            features.number_of_smooth_hole_rim_edges()},
+                                            features.number_of_smooth_hole_rim_edges() + sum.filled_rim_edges},
                        {"hole_rim_edges_left_out", features.number_of_smooth_hole_rim_edges()},
+                       {"filled_rim_edges_left_out", features.number_of_smooth_filled_rim_edges()},
                        {"seam_edges_left_out", features.number_of_smooth_seam_edges()},
                        {"seam_bridges", features.number_of_seam_bridges()},
                        {"non_manifold_edges", features.number_of_edges(FC::NON_MANIFOLD)},

@@ -118,9 +118,12 @@ public:
   /// the open edges left out because they are one side of a seam or a crack across which the
   /// surface is smooth (see `Options::open_edges`)
   std::size_t number_of_smooth_seam_edges() const { return m_smooth_seam_edges; }
-  /// the open edges left out because they are the rim of a hole in a smooth surface, and the rim
-  /// edges of the holes the domain filled left out likewise (see `Options::open_edges`)
+  /// the open edges left out because they are the rim of a hole in a smooth surface (see
+  /// `Options::open_edges`)
   std::size_t number_of_smooth_hole_rim_edges() const { return m_hole_rim_edges; }
+  /// the rim edges of the holes the domain filled (`Surface_domain_3::is_fill()`) left out
+  /// likewise: the rims of holes in a smooth surface
+  std::size_t number_of_smooth_filled_rim_edges() const { return m_filled_rim_edges; }
   /// the `SEAM` edges that join curve ends across a seam or a crack
   std::size_t number_of_seam_bridges() const { return m_seam_bridges; }
 
@@ -197,6 +200,8 @@ private:
         const std::size_t hole = (std::max)(d.filled_hole(h.face), d.filled_hole(g.face));
         if(d.is_fill(h.face) && d.is_fill(g.face)) {
           // inside a fill: never a feature
+        } else if(hole > 0 && !o.open_edges) {
+          if(c <= cos_max) kind |= SHARP;   // (rims not judged as such: an edge like any other)
         } else if(hole > 0) {
           // a filled hole's rim: judged with the whole rim below (provisionally a feature)
           if(rim_length.size() <= hole) { rim_length.resize(hole + 1, 0.0); rim_smooth.resize(hole + 1, 0.0); }
@@ -204,10 +209,8 @@ private:
           const double len = std::sqrt(dot(sub(q, p), sub(q, p)));
           rim_length[hole] += len;
           if(c > cos_max) rim_smooth[hole] += len;
-          if(o.open_edges) {
-            rim_edges.push_back({m_edges.size(), hole});
-            kind |= SHARP;
-          }
+          rim_edges.push_back({m_edges.size(), hole});
+          kind |= SHARP;
         } else if(c <= cos_max) kind |= SHARP;
         if(judge)
           slot_angle[3 * h.face + h.slot] = slot_angle[3 * g.face + g.slot] =
@@ -241,7 +244,7 @@ private:
       if(rim_smooth[re.second] >= 0.5 * rim_length[re.second]) {
         Edge& e = m_edges[re.first];
         e.kind = std::uint8_t(e.kind & ~SHARP);
-        if(e.kind == 0) { ++m_hole_rim_edges; dropped = true; }
+        if(e.kind == 0) { ++m_filled_rim_edges; dropped = true; }
       }
     if(dropped && open_edges.empty()) remove_dropped_edges(edge_faces, edge_consistent);
     if(!open_edges.empty()) {
@@ -381,7 +384,7 @@ private:
       const std::size_t root = uf.find(r);
       if(!closed[root] || count[root] < 3) continue;   // a chain that closes nothing
       // (a loop folded flat has no closing surface: its area must be at least that of a
-      // rectangle 1 x 20 of its perimeter, 1/484 of the square of its perimeter)
+      // rectangle of its perimeter 119 times longer than wide: 1/484 of the square of its perimeter)
       const double a2 = dot(area[root], area[root]) / 4;   // (the vector area is half the sum)
       const double p2 = length[root] * length[root];
       if(!(a2 * 484 * 484 >= p2 * p2)) continue;
@@ -793,6 +796,7 @@ private:
   std::size_t m_smooth_seam_edges = 0;
   std::size_t m_seam_bridges = 0;
   std::size_t m_hole_rim_edges = 0;
+  std::size_t m_filled_rim_edges = 0;
   std::size_t m_smooth_edges = 0;
 };
 

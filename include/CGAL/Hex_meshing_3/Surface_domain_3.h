@@ -96,7 +96,7 @@ public:
     std::size_t fill_triangles = 0;         ///< the triangles added to fill them
     std::size_t filled_rim_edges = 0;       ///< the boundary edges on their rims
     std::size_t non_manifold_edges = 0;     ///< edges of more than two faces (after repair)
-    bool closed = false;                    ///< a closed, manifold, consistently oriented mesh
+    bool closed = false;                    ///< a closed, manifold, consistently oriented mesh (its holes filled)
     bool self_intersecting = false;         ///< tested only when `closed`
     bool reoriented = false;                ///< some faces were reoriented
     bool exact_inside_test = false;         ///< `Side_of_triangle_mesh` is used

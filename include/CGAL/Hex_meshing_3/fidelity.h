@@ -178,8 +178,9 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   const std::size_t nt = domain.number_of_triangles();
   std::vector<double> cumulative(nt);
   double total = 0;
+  std::size_t last_input = 0;   // (a draw that rounds up to the total falls on it, not on a fill)
   for(std::size_t i = 0; i < nt; ++i) {   // (the input's triangles: not the fills of its holes)
-    if(!domain.is_fill(i)) total += std::sqrt(CGAL::to_double(domain.triangle(i).squared_area()));
+    if(!domain.is_fill(i)) { total += std::sqrt(CGAL::to_double(domain.triangle(i).squared_area())); last_input = i; }
     cumulative[i] = total;
   }
   if(!(total > 0)) return r;
@@ -188,7 +189,7 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   for(std::size_t s = 0; s < samples; ++s) {
     const double u = rng.get_double(0, total);
     const std::size_t i = std::size_t(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
-    const Triangle_3& t = domain.triangle((std::min)(i, nt - 1));
+    const Triangle_3& t = domain.triangle(i < nt && !domain.is_fill(i) ? i : last_input);
     double a = rng.get_double(0, 1), b = rng.get_double(0, 1);
     if(a + b > 1) { a = 1 - a; b = 1 - b; }
     const Point_3 p(t[0].x() + a * (t[1].x() - t[0].x()) + b * (t[2].x() - t[0].x()),

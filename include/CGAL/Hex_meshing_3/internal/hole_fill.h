@@ -31,17 +31,19 @@ struct Hole_fill
 
 // Fills the holes of a triangle soup whose faces are consistently oriented across their shared
 // edges. Border edges: edges of exactly one triangle, that triangle not skipped (`skip`: the
-// two-sided sheets, whose borders are rims, not holes), not sealed by another border edge within
-// `seam_tolerance` (a seam between parts or a crack: `sealing_border_edges()`). They are chained as
-// their faces run along them; a chain with a dead end (a vertex with more edges in than out:
-// inconsistent orientations) closes nothing. Each closed chain is walked into simple loops (where
-// holes touch at a vertex, a walk that comes back to a vertex it passed closes a loop there).
-// A loop of 3 to `max_edges` edges whose vector area is at least that of a 1 x 20 rectangle of its
-// perimeter (not folded flat: the two sides of a slit) is filled by CGAL's
+// two-sided sheets, whose borders are rims, not holes), not sealed by another border edge, a
+// sheet's included, within `seam_tolerance` (a seam between parts or a crack:
+// `sealing_border_edges()`). They are chained as their faces run along them; a chain of more than
+// `max_edges` edges or with a dead end (a vertex with more edges in than out: inconsistent
+// orientations) closes nothing. Each closed chain is walked into simple loops (where holes touch
+// at a vertex, a walk that comes back to a vertex it passed closes a loop there). A loop of at
+// least 3 edges whose vector area is at least 1/484 of the square of its perimeter (a rectangle
+// 119 times longer than wide; not folded flat: the two sides of a slit) is filled by CGAL's
 // `triangulate_hole_polyline()` (the triangulation minimising its worst dihedral angle, the rim's
 // faces counted; no new vertex), oriented so that each rim edge runs against its face; a loop
-// whose fill misses a rim edge, runs along an edge the wrong way or has a degenerate triangle
-// (exact collinearity) is left open, and so is one whose fill has more than `max_area_ratio` times
+// whose fill misses a rim edge, runs along an edge the wrong way, has a degenerate triangle
+// (exact collinearity) or a chord that is already an edge of the soup or of a fill before it (a
+// non-manifold edge) is left open, and so is one whose fill has more than `max_area_ratio` times
 // the area of the surface around it (the triangles edge-connected to its rim): that is the rim of
 // an open surface (a roof, a plate given once), not a hole. Deterministic (the soup's order only).
 template <typename GT>
@@ -71,7 +73,7 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
   for(std::size_t i = 0; i < half.size();) {
     std::size_t j = i;
     while(j < half.size() && half[j].key == half[i].key) ++j;
-    if(j - i == 1 && !skip[half[i].face]) border.push_back(half[i]);
+    if(j - i == 1) border.push_back(half[i]);   // (a sheet's too, for the seam test; dropped after it)
     for(std::size_t k = i + 1; k < j; ++k) {
       const std::uint32_t a = find_comp(half[k].face), b = find_comp(half[i].face);
       if(a != b) comp[(std::max)(a, b)] = (std::min)(a, b);
@@ -93,9 +95,16 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
     }
     const std::vector<char> sealed = sealed_border_edges<GT>(segments, ends, seam_tolerance);
     std::size_t kept = 0;
-    for(std::size_t i = 0; i < border.size(); ++i) if(!sealed[i]) border[kept++] = border[i];
+    for(std::size_t i = 0; i < border.size(); ++i) if(!sealed[i] && !skip[border[i].face]) border[kept++] = border[i];
     border.resize(kept);
   }
+  if(border.size() < 3) return out;
+  // an edge already in the soup, or of a fill made before (a chord must be neither)
+  std::vector<std::uint64_t> soup_edges;
+  soup_edges.reserve(half.size());
+  for(const Half& h : half) if(soup_edges.empty() || soup_edges.back() != h.key) soup_edges.push_back(h.key);
+  std::vector<std::uint64_t> fill_edges;   // sorted
+  auto key_of = [](std::uint32_t u, std::uint32_t v) { return u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u); };
   // chains: edges sharing a vertex
   const std::size_t nb = border.size();
   std::vector<std::size_t> uf(nb);
@@ -121,7 +130,7 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
   // fills one loop (edges in order, each head the next one's tail)
   auto fill_loop = [&](const std::vector<std::size_t>& lp) {
     const std::size_t n = lp.size();
-    if(n < 3 || n > max_edges) return;
+    if(n < 3) return;
     // not folded flat: |vector area| >= perimeter^2 / 484 (a 1 x 20 rectangle)
     V c{{0, 0, 0}}, area{{0, 0, 0}};
     double length = 0;
@@ -176,9 +185,20 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
       if(flip == 1) std::swap(tri[1], tri[2]);
       if(CGAL::collinear(points[tri[0]], points[tri[1]], points[tri[2]])) return;
       added.push_back(tri);
+      for(int k = 0; k < 3; ++k) {   // a chord (not a rim edge) already an edge: non-manifold
+        const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
+        const std::uint64_t key = key_of(a, b);
+        if(std::binary_search(fill_edges.begin(), fill_edges.end(), key)) return;
+        bool rim = false;
+        for(std::size_t e : lp) if(key_of(border[e].tail, border[e].head) == key) { rim = true; break; }
+        if(!rim && std::binary_search(soup_edges.begin(), soup_edges.end(), key)) return;
+      }
       fill_area += triangle_area(tri[0], tri[1], tri[2]);
     }
     if(!(fill_area <= max_area_ratio * comp_area[find_comp(border[lp[0]].face)])) return;
+    for(const auto& tri : added)
+      for(int k = 0; k < 3; ++k) fill_edges.push_back(key_of(tri[std::size_t(k)], tri[std::size_t((k + 1) % 3)]));
+    std::sort(fill_edges.begin(), fill_edges.end());
     out.triangles.insert(out.triangles.end(), added.begin(), added.end());
     out.loop_of.insert(out.loop_of.end(), added.size(), id);
     out.loop_face.push_back(border[lp[0]].face);
@@ -186,7 +206,7 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
   };
   for(std::size_t root = 0; root < nb; ++root) {
     const std::vector<std::size_t>& es = chains[root];
-    if(es.size() < 3) continue;
+    if(es.size() < 3 || es.size() > max_edges) continue;   // (the walk is quadratic in a chain's length)
     from.clear();
     for(std::size_t e : es) from.push_back({border[e].tail, e});
     std::sort(from.begin(), from.end());
