@@ -518,11 +518,6 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
   // (with them the capture without pillows: `Staircase_record::pillow_free_deferred`; in part 2,
   // whether it runs)
   bool pillow_free_deferred = false, run_pillow_free = false;
-  // A capture deferred while it ran ahead (with a parallel tag) is kept, to serve as the first of
-  // the deferred captures if they are made (the same capture: the same grid, the same options), not
-  // run again (`stashed`: its staircase's gap, its choice, its mesh, ...)
-  // (used only where its choice is the first of the deferred captures: a deferral at the weights
-  // 3.75 while they ran ahead would otherwise hand them over as the weights 2.5)
   // A capture's choice in the sequence of `mesh_once()`: feature pillows or not, and the factors
   // of the feature paths' turn penalty and snap weight.
   struct Choice
@@ -531,6 +526,11 @@ make_hex_mesh_3(const MeshDomain& domain, const Criteria& criteria, HexMesh& out
     double turn, snap;
     bool operator==(const Choice& o) const { return pillows == o.pillows && turn == o.turn && snap == o.snap; }
   };
+  // A capture deferred while it ran ahead (with a parallel tag) is kept, to serve as the first of
+  // the deferred captures if they are made (the same capture: the same grid, the same options), not
+  // run again (`stashed`: its staircase's gap, its choice, its mesh, ...); used only where its
+  // choice is the first of the deferred captures (a deferral at the weights 3.75 while they ran
+  // ahead would otherwise hand them over as the weights 2.5)
   struct Stashed_capture { double gap; Choice choice; HexMesh mesh; Hex_meshing_3::Meshing_statistics stats; bool ran; double seconds; };
   std::vector<Stashed_capture> stashed;
   // the grids of the staircases whose captures were deferred, kept for them (not made again): at

@@ -126,10 +126,11 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
   // squared distance to its `closest_point()`, so the values are the same as querying each time)
   double sum = 0;
   std::vector<Triangle_3> boundary;
-  std::vector<Point_3> vclosest(mesh.points.size());
+  // (and the triangle it lies on: a vertex nearest a hole's fill is a cap's)
+  std::vector<std::pair<Point_3, std::size_t>> vclosest(mesh.points.size());
   std::vector<char> vknown(mesh.points.size(), 0);
-  auto closest_of_vertex = [&](std::size_t v) -> const Point_3& {
-    if(!vknown[v]) { vclosest[v] = domain.closest_point(mesh.points[v]); vknown[v] = 1; }
+  auto closest_of_vertex = [&](std::size_t v) -> const std::pair<Point_3, std::size_t>& {
+    if(!vknown[v]) { vclosest[v] = domain.closest_point_and_triangle(mesh.points[v]); vknown[v] = 1; }
     return vclosest[v];
   };
   for(const auto& f : mesh.boundary_faces) {
@@ -153,7 +154,7 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     std::uint8_t at = 4;
     const Point_3* pts[5] = {&a, &b, &c, &d, &centre};
     for(std::uint8_t k = 0; k < 5; ++k) {
-      const Point_3& q = k < 4 ? closest_of_vertex(std::size_t(f.vertices[k])) : centre_closest;
+      const Point_3& q = k < 4 ? closest_of_vertex(std::size_t(f.vertices[k])).first : centre_closest;
       const double dist = std::sqrt(CGAL::to_double(GT().compute_squared_distance_3_object()(*pts[k], q)));
       if(dist > worst) { worst = dist; at = k; }
     }
@@ -162,9 +163,11 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     r.face_distances.push_back({worst, where});
     r.face_indices.push_back(std::size_t(&f - mesh.boundary_faces.data()));
     r.face_worst_points.push_back(at);
-    r.face_worst_on_border.push_back(at < 4 && worst > 0 &&
-                                     ((border_tree && CGAL::to_double(border_tree->squared_distance(closest_of_vertex(std::size_t(f.vertices[at])))) <= tiny * tiny) ||
-                                      domain.is_fill(domain.closest_triangle(*pts[at]))));
+    if(at < 4 && worst > 0) {
+      const auto& near = closest_of_vertex(std::size_t(f.vertices[at]));
+      r.face_worst_on_border.push_back(domain.is_fill(near.second) ||
+                                       (border_tree && CGAL::to_double(border_tree->squared_distance(near.first)) <= tiny * tiny));
+    } else r.face_worst_on_border.push_back(0);
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);

@@ -180,25 +180,27 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
     std::vector<std::array<std::uint32_t, 3>> added;
     double fill_area = 0;
     for(const auto& t : fill) {
-      std::array<std::uint32_t, 3> tri = {{border[lp[std::size_t(t.first)]].tail, border[lp[std::size_t(t.second)]].tail,
-                                            border[lp[std::size_t(t.third)]].tail}};
+      const std::size_t ix[3] = {std::size_t(t.first), std::size_t(t.second), std::size_t(t.third)};
+      std::array<std::uint32_t, 3> tri = {{border[lp[ix[0]]].tail, border[lp[ix[1]]].tail, border[lp[ix[2]]].tail}};
       if(flip == 1) std::swap(tri[1], tri[2]);
       if(CGAL::collinear(points[tri[0]], points[tri[1]], points[tri[2]])) return;
       added.push_back(tri);
       for(int k = 0; k < 3; ++k) {   // a chord (not a rim edge) already an edge: non-manifold
-        const std::uint32_t a = tri[std::size_t(k)], b = tri[std::size_t((k + 1) % 3)];
-        const std::uint64_t key = key_of(a, b);
+        const std::size_t a = ix[k], b = ix[(k + 1) % 3];
+        const std::uint64_t key = key_of(border[lp[a]].tail, border[lp[b]].tail);
         if(std::binary_search(fill_edges.begin(), fill_edges.end(), key)) return;
-        bool rim = false;
-        for(std::size_t e : lp) if(key_of(border[e].tail, border[e].head) == key) { rim = true; break; }
+        // (a loop's vertices are distinct: its rim edges are the consecutive positions)
+        const bool rim = b == (a + 1) % n || a == (b + 1) % n;
         if(!rim && std::binary_search(soup_edges.begin(), soup_edges.end(), key)) return;
       }
       fill_area += triangle_area(tri[0], tri[1], tri[2]);
     }
     if(!(fill_area <= max_area_ratio * comp_area[find_comp(border[lp[0]].face)])) return;
+    const std::size_t old_edges = fill_edges.size();
     for(const auto& tri : added)
       for(int k = 0; k < 3; ++k) fill_edges.push_back(key_of(tri[std::size_t(k)], tri[std::size_t((k + 1) % 3)]));
-    std::sort(fill_edges.begin(), fill_edges.end());
+    std::sort(fill_edges.begin() + std::ptrdiff_t(old_edges), fill_edges.end());
+    std::inplace_merge(fill_edges.begin(), fill_edges.begin() + std::ptrdiff_t(old_edges), fill_edges.end());
     out.triangles.insert(out.triangles.end(), added.begin(), added.end());
     out.loop_of.insert(out.loop_of.end(), added.size(), id);
     out.loop_face.push_back(border[lp[0]].face);
