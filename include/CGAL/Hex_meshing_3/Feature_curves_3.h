@@ -12,6 +12,7 @@
 
 #include <CGAL/Hex_meshing_3/Surface_domain_3.h>
 #include <CGAL/Hex_meshing_3/internal/Min_union_find.h>
+#include <CGAL/Hex_meshing_3/internal/hole_fill.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
@@ -396,9 +397,8 @@ private:
   }
 
   // The hole-rim test with the hole filled (see `mark_smooth_hole_rims()`): each closed chain of
-  // at most `max_fill` edges is split into simple loops (walking its edges as their faces run
-  // along them; where holes touch at a vertex, a walk that comes back to a vertex it passed
-  // closes a loop there), each loop is filled, and `smooth_length[root]` gets the length of the
+  // at most `max_fill` edges is split into simple loops (its edges as their faces run along
+  // them: `internal::split_into_loops()`, as the domain's own fill), each loop is filled, and `smooth_length[root]` gets the length of the
   // edges whose face meets the fill's triangle on the edge within the feature angle; `filled[root]`
   // is set if every loop of the chain was filled.
   template <typename Union_find>
@@ -417,10 +417,7 @@ private:
     // an edge's ends as its face runs along it: tail -> head
     auto tail = [&](std::size_t r) { const Open_edge& oe = open[rim[r]]; const auto& e = m_edges[oe.edge].vertices; return oe.forward ? e[0] : e[1]; };
     auto head = [&](std::size_t r) { const Open_edge& oe = open[rim[r]]; const auto& e = m_edges[oe.edge].vertices; return oe.forward ? e[1] : e[0]; };
-    std::vector<std::pair<Index, std::size_t>> from;   // (tail, edge), sorted
-    std::vector<char> used;
-    std::vector<std::size_t> walk, loop;
-    std::vector<std::pair<Index, std::size_t>> on_walk;   // (vertex, position in the walk)
+    std::vector<std::vector<std::size_t>> loops;
     std::vector<Point_3> points, third;
     std::vector<CGAL::Triple<int, int, int>> triangles;
     std::vector<int> apex;
@@ -463,41 +460,14 @@ private:
     for(std::size_t root = 0; root < rim.size(); ++root) {
       const std::vector<std::size_t>& es = chain_edges[root];
       if(es.size() < 3 || es.size() > max_fill) continue;
-      from.clear();
-      for(std::size_t r : es) from.push_back({tail(r), r});
-      std::sort(from.begin(), from.end());
-      used.assign(es.size(), 0);   // (indexed by position in `from`)
-      auto next_edge = [&](Index v) -> std::size_t {   // an unused edge leaving v (its position in `from`), or none
-        for(auto it = std::lower_bound(from.begin(), from.end(), std::make_pair(v, std::size_t(0)));
-            it != from.end() && it->first == v; ++it)
-          if(!used[std::size_t(it - from.begin())]) return std::size_t(it - from.begin());
-        return std::size_t(-1);
-      };
+      if(!internal::split_into_loops(es.size(), [&](std::size_t i) { return tail(es[i]); },
+                                     [&](std::size_t i) { return head(es[i]); }, loops))
+        continue;   // (a dead end: inconsistent orientations)
       bool ok = true;
       double smooth = 0;
-      for(std::size_t s0 = 0; s0 < from.size() && ok; ++s0) {
-        if(used[s0]) continue;
-        walk.clear();
-        on_walk.clear();
-        std::size_t e = s0;
-        on_walk.push_back({tail(from[e].second), 0});
-        while(true) {
-          used[e] = 1;
-          walk.push_back(from[e].second);
-          const Index h = head(from[e].second);
-          // back at a vertex of the walk: the edges since it form a loop
-          std::size_t at = std::size_t(-1);
-          for(const auto& ow : on_walk) if(ow.first == h) at = ow.second;
-          if(at != std::size_t(-1)) {
-            loop.assign(walk.begin() + std::ptrdiff_t(at), walk.end());
-            walk.resize(at);
-            while(!on_walk.empty() && on_walk.back().second > at) on_walk.pop_back();
-            if(loop.size() < 3 || !fill(loop, smooth)) { ok = false; break; }
-            if(walk.empty()) break;
-          } else on_walk.push_back({h, walk.size()});
-          e = next_edge(h);
-          if(e == std::size_t(-1)) { ok = walk.empty(); break; }   // (a dead end: inconsistent orientations)
-        }
+      for(auto& lp : loops) {
+        for(std::size_t& i : lp) i = es[i];
+        if(lp.size() < 3 || !fill(lp, smooth)) { ok = false; break; }
       }
       if(!ok) continue;
       filled[root] = 1;

@@ -20,6 +20,56 @@ namespace CGAL {
 namespace Hex_meshing_3 {
 namespace internal {
 
+// Splits a chain of `n` directed edges (edge i runs tail(i) -> head(i)) into simple loops: from
+// each edge not yet used, a walk follows an unused edge out of each head (the first in order of
+// (tail, index)); where it comes back to a vertex it passed, the edges since then form a loop
+// (holes touching at a vertex are two loops). `loops` gets the loops, each as its edges' indices
+// in order; false if a walk reaches a vertex with no unused edge out (more edges in than out:
+// inconsistent orientations, or a chain that does not close), `loops` then incomplete. Each step
+// scans the walk so far: quadratic in a loop's length. Deterministic.
+template <typename Tail, typename Head>
+bool split_into_loops(std::size_t n, const Tail& tail, const Head& head, std::vector<std::vector<std::size_t>>& loops)
+{
+  typedef decltype(tail(std::size_t(0))) Vertex;
+  loops.clear();
+  std::vector<std::pair<Vertex, std::size_t>> from;   // (tail, edge), sorted
+  from.reserve(n);
+  for(std::size_t i = 0; i < n; ++i) from.push_back({tail(i), i});
+  std::sort(from.begin(), from.end());
+  std::vector<char> used(n, 0);   // (indexed by position in `from`)
+  auto next_edge = [&](Vertex v) -> std::size_t {   // an unused edge leaving v (its position in `from`), or none
+    for(auto it = std::lower_bound(from.begin(), from.end(), std::make_pair(v, std::size_t(0)));
+        it != from.end() && it->first == v; ++it)
+      if(!used[std::size_t(it - from.begin())]) return std::size_t(it - from.begin());
+    return std::size_t(-1);
+  };
+  std::vector<std::size_t> walk;
+  std::vector<std::pair<Vertex, std::size_t>> on_walk;   // (vertex, position in the walk)
+  for(std::size_t s0 = 0; s0 < n; ++s0) {
+    if(used[s0]) continue;
+    walk.clear();
+    on_walk.clear();
+    std::size_t e = s0;
+    on_walk.push_back({tail(from[e].second), 0});
+    while(true) {
+      used[e] = 1;
+      walk.push_back(from[e].second);
+      const Vertex h = head(from[e].second);
+      std::size_t back = std::size_t(-1);
+      for(const auto& ow : on_walk) if(ow.first == h) back = ow.second;
+      if(back != std::size_t(-1)) {   // back at a vertex of the walk: the edges since it form a loop
+        loops.emplace_back(walk.begin() + std::ptrdiff_t(back), walk.end());
+        walk.resize(back);
+        while(!on_walk.empty() && on_walk.back().second > back) on_walk.pop_back();
+        if(walk.empty()) break;
+      } else on_walk.push_back({h, walk.size()});
+      e = next_edge(h);
+      if(e == std::size_t(-1)) return false;   // (walk not empty: a dead end)
+    }
+  }
+  return true;
+}
+
 // What `fill_holes()` adds to a triangle soup.
 struct Hole_fill
 {
@@ -35,8 +85,8 @@ struct Hole_fill
 // sheet's included, within `seam_tolerance` (a seam between parts or a crack:
 // `sealing_border_edges()`). They are chained as their faces run along them; a chain of more than
 // `max_edges` edges or with a dead end (a vertex with more edges in than out: inconsistent
-// orientations) closes nothing. Each closed chain is walked into simple loops (where holes touch
-// at a vertex, a walk that comes back to a vertex it passed closes a loop there). A loop of at
+// orientations) closes nothing. Each closed chain is walked into simple loops
+// (`split_into_loops()`). A loop of at
 // least 3 edges whose vector area is at least 1/484 of the square of its perimeter (a rectangle
 // 119 times longer than wide; not folded flat: the two sides of a slit) is filled by CGAL's
 // `triangulate_hole_polyline()` (the triangulation minimising its worst dihedral angle, the rim's
@@ -121,12 +171,9 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
   std::vector<std::vector<std::size_t>> chains(nb);
   for(std::size_t i = 0; i < nb; ++i) chains[find(i)].push_back(i);
   auto vec = [&](std::uint32_t v) { return V{{CGAL::to_double(points[v].x()), CGAL::to_double(points[v].y()), CGAL::to_double(points[v].z())}}; };
-  std::vector<std::pair<std::uint32_t, std::size_t>> from;   // (tail, edge), sorted
-  std::vector<char> used;
-  std::vector<std::size_t> walk, loop;
-  std::vector<std::pair<std::uint32_t, std::size_t>> on_walk;   // (vertex, position in the walk)
   std::vector<Point_3> pts, third;
   std::vector<CGAL::Triple<int, int, int>> fill;
+  std::vector<std::vector<std::size_t>> loops;
   // fills one loop (edges in order, each head the next one's tail)
   auto fill_loop = [&](const std::vector<std::size_t>& lp) {
     const std::size_t n = lp.size();
@@ -209,44 +256,14 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
   for(std::size_t root = 0; root < nb; ++root) {
     const std::vector<std::size_t>& es = chains[root];
     if(es.size() < 3 || es.size() > max_edges) continue;   // (the walk is quadratic in a chain's length)
-    from.clear();
-    for(std::size_t e : es) from.push_back({border[e].tail, e});
-    std::sort(from.begin(), from.end());
-    used.assign(es.size(), 0);
-    auto next_edge = [&](std::uint32_t v) -> std::size_t {
-      for(auto it = std::lower_bound(from.begin(), from.end(), std::make_pair(v, std::size_t(0)));
-          it != from.end() && it->first == v; ++it)
-        if(!used[std::size_t(it - from.begin())]) return std::size_t(it - from.begin());
-      return std::size_t(-1);
-    };
     // the chain's loops (all or none: a chain with a dead end closes nothing)
-    std::vector<std::vector<std::size_t>> loops;
-    bool ok = true;
-    for(std::size_t s0 = 0; s0 < from.size() && ok; ++s0) {
-      if(used[s0]) continue;
-      walk.clear();
-      on_walk.clear();
-      std::size_t e = s0;
-      on_walk.push_back({border[from[e].second].tail, 0});
-      while(true) {
-        used[e] = 1;
-        walk.push_back(from[e].second);
-        const std::uint32_t h = border[from[e].second].head;
-        std::size_t back = std::size_t(-1);
-        for(const auto& ow : on_walk) if(ow.first == h) back = ow.second;
-        if(back != std::size_t(-1)) {
-          loop.assign(walk.begin() + std::ptrdiff_t(back), walk.end());
-          walk.resize(back);
-          while(!on_walk.empty() && on_walk.back().second > back) on_walk.pop_back();
-          loops.push_back(loop);
-          if(walk.empty()) break;
-        } else on_walk.push_back({h, walk.size()});
-        e = next_edge(h);
-        if(e == std::size_t(-1)) { ok = walk.empty(); break; }
-      }
+    if(!split_into_loops(es.size(), [&](std::size_t i) { return border[es[i]].tail; },
+                         [&](std::size_t i) { return border[es[i]].head; }, loops))
+      continue;
+    for(auto& lp : loops) {
+      for(std::size_t& i : lp) i = es[i];
+      fill_loop(lp);
     }
-    if(!ok) continue;
-    for(const auto& lp : loops) fill_loop(lp);
   }
   return out;
 }
