@@ -983,6 +983,67 @@ void test_features()
               << "scale 0.002 " << fn.number_of_smooth_edges() << "\n";
     assert(short_left == 4 && fw.number_of_smooth_edges() == 4 && fn.number_of_smooth_edges() == 0);
   }
+  {
+    // soft creases: a prism of 16 flat sides (22.5 degrees between them), 4 rows of triangles high,
+    // its ends fans: 16 crease lines of 4 edges each between the two rims (90 degrees: sharp)
+    const int ns = 16, rows = 4;
+    std::vector<Point_3> pts;
+    for(int r = 0; r <= rows; ++r)
+      for(int i = 0; i < ns; ++i)
+        pts.emplace_back(std::cos(2 * CGAL_PI * i / ns), std::sin(2 * CGAL_PI * i / ns), -1 + 2.0 * r / rows);
+    pts.emplace_back(0, 0, -1);
+    pts.emplace_back(0, 0, 1);
+    auto id = [&](int r, int i) { return std::uint32_t(r * ns + i % ns); };
+    std::vector<std::array<std::uint32_t, 3>> tris;
+    for(int r = 0; r < rows; ++r)
+      for(int i = 0; i < ns; ++i) {
+        tris.push_back({{id(r, i), id(r, i + 1), id(r + 1, i + 1)}});
+        tris.push_back({{id(r, i), id(r + 1, i + 1), id(r + 1, i)}});
+      }
+    for(int i = 0; i < ns; ++i) {
+      tris.push_back({{std::uint32_t(pts.size() - 2), id(0, i + 1), id(0, i)}});
+      tris.push_back({{std::uint32_t(pts.size() - 1), id(rows, i), id(rows, i + 1)}});
+    }
+    Domain prism(pts, tris);
+    Features::Options o;
+    o.scale = 0.05;
+    o.contrast = 3;
+    const Features plain(prism, o);
+    o.soft_angle = 15;
+    const Features soft(prism, o);
+    assert(plain.number_of_edges(Features::SHARP) == 32 && plain.number_of_edges(Features::SOFT) == 0);
+    assert(soft.number_of_edges(Features::SHARP) == 32 && soft.number_of_edges(Features::SOFT) == 64 &&
+           soft.number_of_smooth_soft_edges() == 0 && soft.corners().size() == 32 && soft.curves().size() == 48);
+    for(const auto& e : soft.edges())   // the soft ones run up the sides, at the polygon's corners
+      if(e.kind == Features::SOFT) {
+        const Point_3& a = pts[e.vertices[0]];
+        const Point_3& b = pts[e.vertices[1]];
+        assert(a.x() == b.x() && a.y() == b.y() && std::abs(CGAL::to_double(a.x() * a.x() + a.y() * a.y()) - 1) < 1e-12);
+      }
+    // above 22.5 degrees: none; without a judgement (scale and contrast 0): none; creases 2 long
+    // and a scale of 0.6 (soft creases must be 4 x 0.6 long): all 64 left out
+    o.soft_angle = 25;
+    assert(Features(prism, o).number_of_edges(Features::SOFT) == 0);
+    Features::Options unjudged;
+    unjudged.soft_angle = 15;
+    assert(Features(prism, unjudged).number_of_edges(Features::SOFT) == 0);
+    o.soft_angle = 15;
+    o.scale = 0.6;
+    const Features coarse(prism, o);
+    assert(coarse.number_of_edges(Features::SOFT) == 0 && coarse.number_of_smooth_soft_edges() == 64 &&
+           coarse.number_of_edges(Features::SHARP) == 32);
+    // a coarse triangulation of a smooth shape creases by 20 to 30 degrees among creases of 5 to
+    // 15: eight.off keeps few of them
+    Domain eight("data/eight.off");
+    Features::Options e8;
+    e8.contrast = 3;
+    e8.soft_angle = 20;
+    const Features f8(eight, e8);
+    const std::size_t kept = f8.number_of_edges(Features::SOFT), left = f8.number_of_smooth_soft_edges();
+    std::cout << "  prism of 16 sides: 64 soft crease edges at 15 degrees (none at 25, none judged at the scale 0.6); "
+              << "eight at 20 degrees: " << kept << " soft crease edges kept, " << left << " left out\n";
+    assert(left > 100 && kept * 10 <= kept + left);
+  }
 }
 
 // ---- fidelity to the feature curves: exact answers where the mesh boundary is known -----------

@@ -223,7 +223,7 @@ int main(int argc, char** argv)
       "--strict); 3 output error (exists without --force, or not writable); 4 the mesh failed a validity\n"
       "check; 5 cancelled by Ctrl-C (the coarser mesh reached so far is written).");
   std::vector<std::string> inputs, outputs, reports, refine_boxes, patch_name_rules, patch_type_rules, patch_size_rules, feature_files;
-  double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0, feature_scale = -1, feature_contrast = 3;
+  double size = 0, surface_size = 0, scale = 1, feature_angle = 30, feature_size = 0, feature_scale = -1, feature_contrast = 3, soft_crease_angle = 0;
   double curvature_size = 0, curvature_angle = 30, thin_size = 0;
   int thin_cells = 0, cells_between_levels = 1;
   std::string box_s, region = "inside", surface_size_s;
@@ -256,6 +256,13 @@ int main(int argc, char** argv)
   auto* scale_opt = app.add_option("--scale", scale, "multiply the input coordinates by this factor (e.g. 0.001 for millimetres)");
   app.add_option("--feature-angle", feature_angle, "an edge whose face normals differ by at least this many degrees is a "
                                                    "feature (default 30)")->check(CLI::Range(0.0, 180.0));
+  app.add_option("--soft-crease-angle", soft_crease_angle, "edges whose face normals differ by at least this many degrees "
+                                                           "but less than --feature-angle are soft creases, followed like "
+                                                           "features where they stand out (the creases between the facets "
+                                                           "of a faceted blend: the mesh keeps as close to them as the "
+                                                           "facets are); judged like sharp edges at this angle, on curves "
+                                                           "at least twice the finest size long (default 0: none)")
+      ->check(CLI::Range(0.0, 180.0));
   app.add_option("--feature-scale", feature_scale, "a sharp edge must also be sharp with the input's normals averaged this far "
                                                    "on each side, or its curve is left out (the creases of a coarse "
                                                    "triangulation of a smooth shape); 0 keeps every sharp edge "
@@ -501,6 +508,10 @@ int main(int argc, char** argv)
     if(feature_scale >= 0) fopt.scale = feature_scale;
     feature_scale = fopt.scale;
     fopt.contrast = feature_contrast;
+    fopt.soft_angle = soft_crease_angle;
+    if(soft_crease_angle > 0 && (soft_crease_angle >= feature_angle || (fopt.scale <= 0 && feature_contrast <= 0)))
+      std::cerr << "hexmesh: warning: --soft-crease-angle " << soft_crease_angle << " makes no soft crease: it must be below "
+                << "--feature-angle, with --feature-scale or --feature-contrast above 0 to judge them\n";
     const HM::Feature_curves_3<K> features(domain, fopt);
     if(feature_size > 0) domain.set_feature_edges(features.edge_vertices());
     std::vector<std::vector<Point_3>> user_lines;
@@ -516,6 +527,9 @@ int main(int argc, char** argv)
       std::cerr << "hexmesh: features (" << feature_angle << " degrees): " << features.number_of_edges(FC::SHARP) << " sharp, "
                 << features.number_of_edges(FC::OPEN) << " open, " << features.number_of_edges(FC::NON_MANIFOLD)
                 << " non-manifold, " << features.number_of_edges(FC::PATCH_BORDER) << " part-border edges";
+    if(!quiet && fopt.soft_angle > 0)
+      std::cerr << ", " << features.number_of_edges(FC::SOFT) << " soft creases (" << soft_crease_angle << " degrees; "
+                << features.number_of_smooth_soft_edges() << " left out)";
     if(!quiet && features.number_of_smooth_edges())
       std::cerr << " (" << features.number_of_smooth_edges() << " sharp edges left out: not sharp at the scale "
                 << feature_scale << " or not standing out " << feature_contrast << " times from the edges around)";
@@ -797,7 +811,7 @@ int main(int argc, char** argv)
                       {"thin_size", thin_cells > 0 ? thin_size : 0.0}, {"cells_between_levels", cells_between_levels},
                       {"feature_pillows", feature_pillows}, {"capture_retry_cells", capture_retry_cells}, {"all_capture_retries", all_capture_retries}, {"smoothing_sweeps", smoothing_sweeps},
                       {"threads", used_threads},
-                      {"feature_angle", feature_angle},
+                      {"feature_angle", feature_angle}, {"soft_crease_angle", soft_crease_angle},
                       {"feature_size", feature_size}, {"scale", scale}, {"max_level", max_level},
                       {"max_cells", max_cells}, {"region", region}, {"strict", strict}, {"fill_holes", fill_holes},
                       {"box", {box.xmin(), box.ymin(), box.zmin(), box.xmax(), box.ymax(), box.zmax()}},
@@ -816,6 +830,7 @@ int main(int argc, char** argv)
                      {"filled_rim_edges", sum.filled_rim_edges}};
       j["features"] = {{"feature_angle", feature_angle}, {"feature_size", feature_size}, {"sharp_edges", features.number_of_edges(FC::SHARP)},
                        {"feature_scale", feature_scale}, {"feature_contrast", feature_contrast}, {"smooth_edges_left_out", features.number_of_smooth_edges()},
+                       {"soft_crease_edges", features.number_of_edges(FC::SOFT)}, {"soft_crease_edges_left_out", features.number_of_smooth_soft_edges()},
                        {"open_edges", features.number_of_edges(FC::OPEN)},
                        {"input_open_edges", features.number_of_edges(FC::OPEN) + features.number_of_smooth_seam_edges() +
                                             features.number_of_smooth_hole_rim_edges() + sum.filled_rim_edges},
@@ -894,6 +909,7 @@ int main(int argc, char** argv)
           lopt.feature_angle = feature_angle - feature_tolerance;
           lopt.scale = 0;
           lopt.contrast = 0;
+          lopt.soft_angle = 0;
           const HM::Feature_curves_3<K> loose(domain, lopt);
           const HM::Feature_fidelity ft =
               HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, feature_tolerance, ff.sample_spacing);

@@ -46,8 +46,9 @@ public:
   typedef std::uint32_t Index;
 
   /// what makes an edge a feature (a bit set: an edge may be several)
-  /// (SEAM: no input edge, it joins two curve ends across a seam or a crack, see `Options::open_edges`)
-  enum Kind : std::uint8_t { SHARP = 1, OPEN = 2, NON_MANIFOLD = 4, PATCH_BORDER = 8, SEAM = 16 };
+  /// (SEAM: no input edge, it joins two curve ends across a seam or a crack, see `Options::open_edges`;
+  /// SOFT: a crease below the feature angle, see `Options::soft_angle`)
+  enum Kind : std::uint8_t { SHARP = 1, OPEN = 2, NON_MANIFOLD = 4, PATCH_BORDER = 8, SEAM = 16, SOFT = 32 };
 
   struct Options
   {
@@ -83,6 +84,20 @@ public:
     /// finely triangulated faces has a ratio of 20 or more. `make_hex_mesh_3()` uses 3 when it
     /// builds the curves itself.
     double contrast = 0;
+    /// degrees; 0 (the default) or at least the feature angle: none. Otherwise an edge whose face
+    /// normals differ by at least this but less than the feature angle is a soft crease (`SOFT`):
+    /// the creases between the flat facets of a faceted blend or fillet (fandisk's blends: 17 to
+    /// 22 degrees), which a mesh boundary following them keeps as close to the input as the
+    /// facets are (crossing them, its faces cut under the creases). Soft creases need the
+    /// judgement of `scale` or `contrast`, at this angle: sharp at the scale, and standing out
+    /// 3 x `contrast` times from the mean angle of the edges around below this angle (a faceted
+    /// blend's creases run between flat facets; the elephant's coarse triangulation creases by
+    /// 20 to 30 degrees among creases of 5 to 15: at 3 x 3 it keeps 10 of 1,132); and a curve
+    /// loses its soft creases if they are shorter than 4 x `scale` in all (twice the finest size
+    /// when `make_hex_mesh_3()` builds the curves: not a sharp curve's few edges beyond its end). Without `scale` and `contrast`, no edge is
+    /// soft. The coarse triangulation of a smooth shape creases too, shortly and among creases
+    /// of all angles: few pass. Not counted by `feature_fidelity()` as input features.
+    double soft_angle = 0;
   };
 
   struct Edge { std::array<Index, 2> vertices; std::uint8_t kind; };
@@ -116,6 +131,9 @@ public:
   /// the sharp edges left out because they are not sharp at `Options::scale` or do not stand out
   /// by `Options::contrast`
   std::size_t number_of_smooth_edges() const { return m_smooth_edges; }
+  /// the soft creases left out likewise (at `Options::soft_angle`), or shorter than 4 x
+  /// `Options::scale` on their curve, or on a curve with open, non-manifold or part-border edges
+  std::size_t number_of_smooth_soft_edges() const { return m_smooth_soft_edges; }
   /// the open edges left out because they are one side of a seam or a crack across which the
   /// surface is smooth (see `Options::open_edges`)
   std::size_t number_of_smooth_seam_edges() const { return m_smooth_seam_edges; }
@@ -148,6 +166,9 @@ private:
   {
     const auto& tris = d.triangle_indices();
     const double cos_max = std::cos(o.feature_angle * CGAL_PI / 180.0);
+    const bool judge = o.scale > 0 || o.contrast > 0;
+    const bool soft = judge && o.soft_angle > 0 && o.soft_angle < o.feature_angle;
+    const double cos_soft = soft ? std::cos(o.soft_angle * CGAL_PI / 180.0) : cos_max;
     std::vector<V> normal(tris.size());
     for(std::size_t f = 0; f < tris.size(); ++f) {
       const V a = vec(m_points[tris[f][0]]), b = vec(m_points[tris[f][1]]), c = vec(m_points[tris[f][2]]);
@@ -164,7 +185,6 @@ private:
         half.push_back({u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u), Index(f), u < v,
                         std::uint8_t(k)});
       }
-    const bool judge = o.scale > 0 || o.contrast > 0;
     // for the judgement at a scale: the face across each side (none at open and non-manifold
     // edges), whether it is oriented the same way, and the feature edge on each side
     const Index none = Index(-1);
@@ -213,6 +233,7 @@ private:
           rim_edges.push_back({m_edges.size(), hole});
           kind |= SHARP;
         } else if(c <= cos_max) kind |= SHARP;
+        else if(c <= cos_soft) kind |= SOFT;
         if(judge)
           slot_angle[3 * h.face + h.slot] = slot_angle[3 * g.face + g.slot] =
             float(std::acos((std::max)(-1.0, (std::min)(1.0, c))) * 180.0 / CGAL_PI);
@@ -254,7 +275,7 @@ private:
       remove_dropped_edges(edge_faces, edge_consistent);
       bridge_seams(internal::seam_tolerance(d.bbox()), cos_max, judge, edge_faces, edge_consistent);
     }
-    if(judge) judge_sharp_edges(d, o, cos_max, across, same_way, slot_angle, edge_faces, edge_consistent);
+    if(judge) judge_sharp_edges(d, o, cos_max, cos_soft, across, same_way, slot_angle, edge_faces, edge_consistent);
     chain(cos_max);
   }
 
@@ -556,7 +577,7 @@ private:
 
   // leaves out the curves of sharp edges that are not sharp at `o.scale` or do not stand out by
   // `o.contrast` (see `Options::scale` and `Options::contrast`)
-  void judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max,
+  void judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max, double cos_soft,
                       const std::vector<Index>& across, const std::vector<char>& same_way,
                       const std::vector<float>& slot_angle, const std::vector<std::array<Index, 2>>& edge_faces, const std::vector<char>& edge_consistent)
   {
@@ -624,10 +645,15 @@ private:
       n[0] = unit(n[0]);
       n[1] = unit(n[1]);
     };
-    // the edge's angle against the mean angle of the non-sharp edges of the faces around it
+    // the edge's angle against the mean angle of the non-sharp edges of the faces around it (for
+    // a soft crease, 3 times as much against the edges below the soft angle: a faceted blend's
+    // creases run side by side between flat facets)
     const double feature_angle = std::acos(cos_max) * 180.0 / CGAL_PI;
+    const double soft_angle = std::acos(cos_soft) * 180.0 / CGAL_PI;
     std::vector<Index> ring;
     auto stands_out = [&](Index e) {
+      const bool is_soft = m_edges[e].kind == SOFT;
+      const double below = is_soft ? soft_angle : feature_angle;
       const std::array<Index, 2>& fs = edge_faces[e];
       ring.assign(fs.begin(), fs.end());
       for(Index f : fs)
@@ -642,9 +668,9 @@ private:
           if(a < 0) continue;
           const Index g = across[3 * f + k];
           if((f == fs[0] && g == fs[1]) || (f == fs[1] && g == fs[0])) { own = a; continue; }
-          if(a < feature_angle) { sum += a; ++n; }   // (each inner edge counts from both faces)
+          if(a < below) { sum += a; ++n; }   // (each inner edge counts from both faces)
         }
-      return n == 0 || own >= 2 * feature_angle || own >= o.contrast * sum / double(n);
+      return n == 0 || (!is_soft && own >= 2 * feature_angle) || own >= (is_soft ? 3.0 : 1.0) * o.contrast * sum / double(n);
     };
     std::vector<char> kept(m_edges.size(), 1);
     m_corners.clear();
@@ -663,34 +689,41 @@ private:
       for(std::size_t k = 0; k + 1 < nv + (cv.closed ? 1 : 0); ++k)
         es.push_back(edge_index(cv.vertices[k], cv.vertices[(k + 1) % nv]));
       bool only_sharp = !es.empty();
-      for(Index e : es) only_sharp = only_sharp && (m_edges[e].kind == SHARP || m_edges[e].kind == SEAM);
-      if(!only_sharp) continue;
-      double len = 0, sharp = 0;
+      for(Index e : es) only_sharp = only_sharp && (m_edges[e].kind == SHARP || m_edges[e].kind == SOFT || m_edges[e].kind == SEAM);
+      if(!only_sharp) {   // (soft creases along open, non-manifold or part-border edges: none)
+        for(Index e : es) if(m_edges[e].kind == SOFT) kept[e] = 0;
+        continue;
+      }
+      double len = 0, sharp = 0, soft_len = 0;
       for(Index e : es) {
         if(m_edges[e].kind == SEAM) continue;   // (no faces: a hair across a crack)
         const V p = vec(m_points[m_edges[e].vertices[0]]), q = vec(m_points[m_edges[e].vertices[1]]);
         const double l = std::sqrt(dot(sub(q, p), sub(q, p)));
         len += l;
+        if(m_edges[e].kind == SOFT) soft_len += l;
         if(o.scale > 0) {
           std::array<V, 2> n;
           sides(e, n);
           double c = dot(n[0], n[1]);
           if(d.is_two_sided(edge_faces[e][0]) || d.is_two_sided(edge_faces[e][1])) c = std::abs(c);
           else if(!edge_consistent[e]) c = -c;
-          if(c > cos_max) continue;
+          if(c > (m_edges[e].kind == SOFT ? cos_soft : cos_max)) continue;
         }
         if(o.contrast > 0 && !stands_out(e)) continue;
         sharp += l;
       }
       if(sharp < 0.5 * len)
         for(Index e : es) kept[e] = 0;
+      else if(soft_len < 4 * o.scale)   // (soft creases shorter than that in all, on their curve: they go)
+        for(Index e : es) if(m_edges[e].kind == SOFT) kept[e] = 0;
     }
     m_corners.clear();
     m_curves.clear();
     std::vector<Edge> cur;
+    m_smooth_edges = m_smooth_soft_edges = 0;
     for(std::size_t e = 0; e < m_edges.size(); ++e)
       if(kept[e]) cur.push_back(m_edges[e]);
-    m_smooth_edges = m_edges.size() - cur.size();
+      else ++(m_edges[e].kind == SOFT ? m_smooth_soft_edges : m_smooth_edges);
     m_edges.swap(cur);
   }
 
@@ -768,6 +801,7 @@ private:
   std::size_t m_hole_rim_edges = 0;
   std::size_t m_filled_rim_edges = 0;
   std::size_t m_smooth_edges = 0;
+  std::size_t m_smooth_soft_edges = 0;
 };
 
 } // namespace Hex_meshing_3
