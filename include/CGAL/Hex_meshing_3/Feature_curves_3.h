@@ -92,9 +92,11 @@ public:
     /// judgement of `scale` or `contrast`, at this angle: sharp at the scale, and standing out
     /// 3 x `contrast` times from the mean angle of the edges around below this angle (a faceted
     /// blend's creases run between flat facets; the elephant's coarse triangulation creases by
-    /// 20 to 30 degrees among creases of 5 to 15: at 3 x 3 it keeps 10 of 1,132); and a curve
-    /// loses its soft creases if they are shorter than 4 x `scale` in all (twice the finest size
-    /// when `make_hex_mesh_3()` builds the curves: not a sharp curve's few edges beyond its end). Without `scale` and `contrast`, no edge is
+    /// 20 to 30 degrees among creases of 5 to 15: at 3 x 3 it keeps 2 of 1,132), on their own
+    /// curves (chained apart from the sharp edges, whose judgement they leave as it was), at
+    /// least half of a curve's length passing, and a curve at least 4 x `scale` long (twice the
+    /// finest size when `make_hex_mesh_3()` builds the curves). An edge that is a feature of
+    /// another kind (a part border) is no soft crease. Without `scale` and `contrast`, no edge is
     /// soft. The coarse triangulation of a smooth shape creases too, shortly and among creases
     /// of all angles: few pass. Not counted by `feature_fidelity()` as input features.
     double soft_angle = 0;
@@ -131,8 +133,8 @@ public:
   /// the sharp edges left out because they are not sharp at `Options::scale` or do not stand out
   /// by `Options::contrast`
   std::size_t number_of_smooth_edges() const { return m_smooth_edges; }
-  /// the soft creases left out likewise (at `Options::soft_angle`), or shorter than 4 x
-  /// `Options::scale` on their curve, or on a curve with open, non-manifold or part-border edges
+  /// the soft creases left out likewise (at `Options::soft_angle`), or on a curve of them shorter
+  /// than 4 x `Options::scale`
   std::size_t number_of_smooth_soft_edges() const { return m_smooth_soft_edges; }
   /// the open edges left out because they are one side of a seam or a crack across which the
   /// surface is smooth (see `Options::open_edges`)
@@ -167,8 +169,11 @@ private:
     const auto& tris = d.triangle_indices();
     const double cos_max = std::cos(o.feature_angle * CGAL_PI / 180.0);
     const bool judge = o.scale > 0 || o.contrast > 0;
-    const bool soft = judge && o.soft_angle > 0 && o.soft_angle < o.feature_angle;
-    const double cos_soft = soft ? std::cos(o.soft_angle * CGAL_PI / 180.0) : cos_max;
+    const bool judge_soft = judge && o.soft_angle > 0 && o.soft_angle < o.feature_angle;
+    const double cos_soft = judge_soft ? std::cos(o.soft_angle * CGAL_PI / 180.0) : cos_max;
+    std::vector<Edge> soft;   // the soft creases, with their faces, until judged
+    std::vector<std::array<Index, 2>> soft_faces;
+    std::vector<char> soft_consistent;
     std::vector<V> normal(tris.size());
     for(std::size_t f = 0; f < tris.size(); ++f) {
       const V a = vec(m_points[tris[f][0]]), b = vec(m_points[tris[f][1]]), c = vec(m_points[tris[f][2]]);
@@ -209,6 +214,7 @@ private:
       std::size_t j = i;
       while(j < half.size() && half[j].key == half[i].key) ++j;
       std::uint8_t kind = 0;
+      bool soft_here = false;   // a soft crease (set aside: judged after the sharp edges)
       const std::size_t deg = j - i;
       if(deg == 1 && o.open_edges) kind |= OPEN;
       if(deg > 2 && o.non_manifold_edges) kind |= NON_MANIFOLD;
@@ -233,7 +239,7 @@ private:
           rim_edges.push_back({m_edges.size(), hole});
           kind |= SHARP;
         } else if(c <= cos_max) kind |= SHARP;
-        else if(c <= cos_soft) kind |= SOFT;
+        else if(c <= cos_soft) soft_here = true;
         if(judge)
           slot_angle[3 * h.face + h.slot] = slot_angle[3 * g.face + g.slot] =
             float(std::acos((std::max)(-1.0, (std::min)(1.0, c))) * 180.0 / CGAL_PI);
@@ -245,6 +251,11 @@ private:
         across[3 * h.face + h.slot] = g.face;
         across[3 * g.face + g.slot] = h.face;
         same_way[3 * h.face + h.slot] = same_way[3 * g.face + g.slot] = char(h.forward != g.forward);
+      }
+      if(soft_here && !kind) {
+        soft.push_back({{Index(half[i].key >> 32), Index(half[i].key & 0xffffffffu)}, SOFT});
+        soft_faces.push_back({{half[i].face, half[i + 1].face}});
+        soft_consistent.push_back(char(half[i].forward != half[i + 1].forward));
       }
       if(kind) {
         if(kind & OPEN) open_edges.push_back({Index(m_edges.size()), half[i].face, half[i].forward});
@@ -275,7 +286,19 @@ private:
       remove_dropped_edges(edge_faces, edge_consistent);
       bridge_seams(internal::seam_tolerance(d.bbox()), cos_max, judge, edge_faces, edge_consistent);
     }
-    if(judge) judge_sharp_edges(d, o, cos_max, cos_soft, across, same_way, slot_angle, edge_faces, edge_consistent);
+    if(judge) m_smooth_edges = judge_sharp_edges(d, o, cos_max, false, across, same_way, slot_angle, edge_faces, edge_consistent);
+    if(!soft.empty()) {
+      // the soft creases judged on their own curves (the sharp edges' judgement as without them),
+      // then merged with the features kept
+      m_edges.swap(soft);
+      m_smooth_soft_edges = judge_sharp_edges(d, o, cos_soft, true, across, same_way, slot_angle, soft_faces, soft_consistent);
+      m_edges.swap(soft);
+      std::vector<Edge> all;
+      all.reserve(m_edges.size() + soft.size());
+      std::merge(m_edges.begin(), m_edges.end(), soft.begin(), soft.end(), std::back_inserter(all),
+                 [](const Edge& a, const Edge& b) { return a.vertices < b.vertices; });
+      m_edges.swap(all);
+    }
     chain(cos_max);
   }
 
@@ -576,8 +599,10 @@ private:
   }
 
   // leaves out the curves of sharp edges that are not sharp at `o.scale` or do not stand out by
-  // `o.contrast` (see `Options::scale` and `Options::contrast`)
-  void judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max, double cos_soft,
+  // `o.contrast` (see `Options::scale` and `Options::contrast`); with `soft`, the edges are the
+  // soft creases (alone: their own curves), judged at the soft angle (`cos_limit`), by 3 x the
+  // contrast, and their curves at least 4 x the scale long. Returns how many edges it left out.
+  std::size_t judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_limit, bool soft,
                       const std::vector<Index>& across, const std::vector<char>& same_way,
                       const std::vector<float>& slot_angle, const std::vector<std::array<Index, 2>>& edge_faces, const std::vector<char>& edge_consistent)
   {
@@ -648,12 +673,9 @@ private:
     // the edge's angle against the mean angle of the non-sharp edges of the faces around it (for
     // a soft crease, 3 times as much against the edges below the soft angle: a faceted blend's
     // creases run side by side between flat facets)
-    const double feature_angle = std::acos(cos_max) * 180.0 / CGAL_PI;
-    const double soft_angle = std::acos(cos_soft) * 180.0 / CGAL_PI;
+    const double limit_angle = std::acos(cos_limit) * 180.0 / CGAL_PI;
     std::vector<Index> ring;
     auto stands_out = [&](Index e) {
-      const bool is_soft = m_edges[e].kind == SOFT;
-      const double below = is_soft ? soft_angle : feature_angle;
       const std::array<Index, 2>& fs = edge_faces[e];
       ring.assign(fs.begin(), fs.end());
       for(Index f : fs)
@@ -668,14 +690,14 @@ private:
           if(a < 0) continue;
           const Index g = across[3 * f + k];
           if((f == fs[0] && g == fs[1]) || (f == fs[1] && g == fs[0])) { own = a; continue; }
-          if(a < below) { sum += a; ++n; }   // (each inner edge counts from both faces)
+          if(a < limit_angle) { sum += a; ++n; }   // (each inner edge counts from both faces)
         }
-      return n == 0 || (!is_soft && own >= 2 * feature_angle) || own >= (is_soft ? 3.0 : 1.0) * o.contrast * sum / double(n);
+      return n == 0 || (!soft && own >= 2 * limit_angle) || own >= (soft ? 3.0 : 1.0) * o.contrast * sum / double(n);
     };
     std::vector<char> kept(m_edges.size(), 1);
     m_corners.clear();
     m_curves.clear();
-    chain(cos_max);
+    chain(std::cos(o.feature_angle * CGAL_PI / 180.0));
     auto edge_index = [&](Index u, Index v) {
       const std::uint64_t key = u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u);
       const auto it = std::lower_bound(m_edges.begin(), m_edges.end(), key, [](const Edge& x, std::uint64_t k) {
@@ -690,41 +712,35 @@ private:
         es.push_back(edge_index(cv.vertices[k], cv.vertices[(k + 1) % nv]));
       bool only_sharp = !es.empty();
       for(Index e : es) only_sharp = only_sharp && (m_edges[e].kind == SHARP || m_edges[e].kind == SOFT || m_edges[e].kind == SEAM);
-      if(!only_sharp) {   // (soft creases along open, non-manifold or part-border edges: none)
-        for(Index e : es) if(m_edges[e].kind == SOFT) kept[e] = 0;
-        continue;
-      }
-      double len = 0, sharp = 0, soft_len = 0;
+      if(!only_sharp) continue;
+      double len = 0, sharp = 0;
       for(Index e : es) {
         if(m_edges[e].kind == SEAM) continue;   // (no faces: a hair across a crack)
         const V p = vec(m_points[m_edges[e].vertices[0]]), q = vec(m_points[m_edges[e].vertices[1]]);
         const double l = std::sqrt(dot(sub(q, p), sub(q, p)));
         len += l;
-        if(m_edges[e].kind == SOFT) soft_len += l;
         if(o.scale > 0) {
           std::array<V, 2> n;
           sides(e, n);
           double c = dot(n[0], n[1]);
           if(d.is_two_sided(edge_faces[e][0]) || d.is_two_sided(edge_faces[e][1])) c = std::abs(c);
           else if(!edge_consistent[e]) c = -c;
-          if(c > (m_edges[e].kind == SOFT ? cos_soft : cos_max)) continue;
+          if(c > cos_limit) continue;
         }
         if(o.contrast > 0 && !stands_out(e)) continue;
         sharp += l;
       }
-      if(sharp < 0.5 * len)
+      if(sharp < 0.5 * len || (soft && len < 4 * o.scale))
         for(Index e : es) kept[e] = 0;
-      else if(soft_len < 4 * o.scale)   // (soft creases shorter than that in all, on their curve: they go)
-        for(Index e : es) if(m_edges[e].kind == SOFT) kept[e] = 0;
     }
     m_corners.clear();
     m_curves.clear();
     std::vector<Edge> cur;
-    m_smooth_edges = m_smooth_soft_edges = 0;
     for(std::size_t e = 0; e < m_edges.size(); ++e)
       if(kept[e]) cur.push_back(m_edges[e]);
-      else ++(m_edges[e].kind == SOFT ? m_smooth_soft_edges : m_smooth_edges);
+    const std::size_t left = m_edges.size() - cur.size();
     m_edges.swap(cur);
+    return left;
   }
 
   // corners and polylines
