@@ -261,7 +261,8 @@ int main(int argc, char** argv)
                                                            "features where they stand out (the creases between the facets "
                                                            "of a faceted blend: the mesh keeps as close to them as the "
                                                            "facets are); judged like sharp edges at this angle, on curves "
-                                                           "at least twice the finest size long (default 0: none)")
+                                                           "at least 4 x the feature scale long (twice the finest size by "
+                                                           "default; default 0: none)")
       ->check(CLI::Range(0.0, 180.0));
   app.add_option("--feature-scale", feature_scale, "a sharp edge must also be sharp with the input's normals averaged this far "
                                                    "on each side, or its curve is left out (the creases of a coarse "
@@ -527,9 +528,6 @@ int main(int argc, char** argv)
       std::cerr << "hexmesh: features (" << feature_angle << " degrees): " << features.number_of_edges(FC::SHARP) << " sharp, "
                 << features.number_of_edges(FC::OPEN) << " open, " << features.number_of_edges(FC::NON_MANIFOLD)
                 << " non-manifold, " << features.number_of_edges(FC::PATCH_BORDER) << " part-border edges";
-    if(!quiet && fopt.soft_angle > 0)
-      std::cerr << ", " << features.number_of_edges(FC::SOFT) << " soft creases (" << soft_crease_angle << " degrees; "
-                << features.number_of_smooth_soft_edges() << " left out)";
     if(!quiet && features.number_of_smooth_edges())
       std::cerr << " (" << features.number_of_smooth_edges() << " sharp edges left out: not sharp at the scale "
                 << feature_scale << " or not standing out " << feature_contrast << " times from the edges around)";
@@ -540,6 +538,9 @@ int main(int argc, char** argv)
       std::cerr << " (" << features.number_of_smooth_hole_rim_edges() << " open edges left out: rims of holes in a smooth surface)";
     if(!quiet && features.number_of_smooth_filled_rim_edges())
       std::cerr << " (" << features.number_of_smooth_filled_rim_edges() << " rim edges of filled holes left out: smooth with their fill)";
+    if(!quiet && fopt.soft_angle > 0)
+      std::cerr << "; " << features.number_of_edges(FC::SOFT) << " soft creases (" << soft_crease_angle << " degrees; "
+                << features.number_of_smooth_soft_edges() << " left out)";
     if(!quiet)
       std::cerr << "; "
                 << features.curves().size() << " curves, " << features.corners().size() << " corners\n";

@@ -14,7 +14,6 @@
 #include <CGAL/Hex_meshing_3/internal/Min_union_find.h>
 #include <CGAL/Hex_meshing_3/internal/hole_fill.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
 #include <array>
@@ -90,7 +89,8 @@ public:
     /// 22 degrees), which a mesh boundary following them keeps as close to the input as the
     /// facets are (crossing them, its faces cut under the creases). Soft creases need the
     /// judgement of `scale` or `contrast`, at this angle: sharp at the scale, and standing out
-    /// 3 x `contrast` times from the mean angle of the edges around below this angle (a faceted
+    /// 3 x `contrast` times from the mean angle of the edges around below this angle (no pass
+    /// for twice the angle, as sharp edges have; a faceted
     /// blend's creases run between flat facets; the elephant's coarse triangulation creases by
     /// 20 to 30 degrees among creases of 5 to 15: at 3 x 3 it keeps 2 of 1,132), on their own
     /// curves (chained apart from the sharp edges, whose judgement they leave as it was), at
@@ -293,10 +293,14 @@ private:
       m_edges.swap(soft);
       m_smooth_soft_edges = judge_sharp_edges(d, o, cos_soft, true, across, same_way, slot_angle, soft_faces, soft_consistent);
       m_edges.swap(soft);
+      // (both sorted by vertices; an edge in both - a seam bridge along an input edge - once, as
+      // the feature it already was)
+      auto by_vertices = [](const Edge& a, const Edge& b) { return a.vertices < b.vertices; };
+      CGAL_assertion(std::is_sorted(m_edges.begin(), m_edges.end(), by_vertices) &&
+                     std::is_sorted(soft.begin(), soft.end(), by_vertices));
       std::vector<Edge> all;
       all.reserve(m_edges.size() + soft.size());
-      std::merge(m_edges.begin(), m_edges.end(), soft.begin(), soft.end(), std::back_inserter(all),
-                 [](const Edge& a, const Edge& b) { return a.vertices < b.vertices; });
+      std::set_union(m_edges.begin(), m_edges.end(), soft.begin(), soft.end(), std::back_inserter(all), by_vertices);
       m_edges.swap(all);
     }
     chain(cos_max);
@@ -428,11 +432,8 @@ private:
     for(std::size_t r = 0; r < rim.size(); ++r) {
       const std::size_t root = uf.find(r);
       if(!closed[root] || count[root] < 3) continue;   // a chain that closes nothing
-      // (a loop folded flat has no closing surface: its area must be at least that of a
-      // rectangle of its perimeter 119 times longer than wide: 1/484 of the square of its perimeter)
-      const double a2 = dot(area[root], area[root]) / 4;   // (the vector area is half the sum)
-      const double p2 = length[root] * length[root];
-      if(!(a2 * 484 * 484 >= p2 * p2)) continue;
+      // (a loop folded flat has no closing surface)
+      if(!internal::spans_an_area(dot(area[root], area[root]) / 4, length[root])) continue;   // (the vector area is half the sum)
       if(smooth_length[root] < 0.5 * length[root]) continue;   // the closing surface meets it at an angle
       Edge& ed = m_edges[open[rim[r]].edge];
       ed.kind = std::uint8_t(ed.kind & ~OPEN);
@@ -477,10 +478,7 @@ private:
         third.push_back(m_points[o]);
       }
       triangles.clear();
-      namespace PMP = CGAL::Polygon_mesh_processing;
-      PMP::triangulate_hole_polyline(points, third, std::back_inserter(triangles),
-                                     CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
-                                       .do_not_use_cubic_algorithm(lp.size() > 100));
+      internal::triangulate_loop(points, third, std::back_inserter(triangles));
       // per loop edge (k, k + 1), the third vertex of the fill's triangle on it
       const int n = int(lp.size());
       apex.assign(lp.size(), -1);

@@ -70,6 +70,25 @@ bool split_into_loops(std::size_t n, const Tail& tail, const Head& head, std::ve
   return true;
 }
 
+// Whether a loop whose vector area has the squared norm `area2` and whose perimeter is `length`
+// may bound a hole: not folded flat (the two sides of a slit), its area at least 1/484 of the
+// square of its perimeter (a rectangle 119 times longer than wide is at the limit)
+inline bool spans_an_area(double area2, double length)
+{
+  return area2 * 484.0 * 484.0 >= length * length * length * length;
+}
+
+// CGAL's `triangulate_hole_polyline()` on a loop (its points `pts`, and per edge k -> k + 1 the
+// third point of the face on it, `third`) as the hole fills call it: the triangulation minimising
+// its worst dihedral angle, the rim's faces counted, over the 3D search space (the cubic search up
+// to 100 edges, Delaunay-restricted beyond); no new vertex
+template <typename Point_3, typename OutputIterator>
+void triangulate_loop(const std::vector<Point_3>& pts, const std::vector<Point_3>& third, OutputIterator out)
+{
+  CGAL::Polygon_mesh_processing::triangulate_hole_polyline(
+    pts, third, out, CGAL::parameters::use_2d_constrained_delaunay_triangulation(false).do_not_use_cubic_algorithm(pts.size() > 100));
+}
+
 // What `fill_holes()` adds to a triangle soup.
 struct Hole_fill
 {
@@ -178,7 +197,7 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
   auto fill_loop = [&](const std::vector<std::size_t>& lp) {
     const std::size_t n = lp.size();
     if(n < 3) return;
-    // not folded flat: |vector area| >= perimeter^2 / 484 (a 1 x 20 rectangle)
+    // not folded flat
     V c{{0, 0, 0}}, area{{0, 0, 0}};
     double length = 0;
     for(std::size_t e : lp) { const V p = vec(border[e].tail); for(int k = 0; k < 3; ++k) c[std::size_t(k)] += p[std::size_t(k)] / double(n); }
@@ -191,7 +210,7 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
       length += std::sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
     }
     const double a2 = area[0] * area[0] + area[1] * area[1] + area[2] * area[2];
-    if(!(a2 * 484.0 * 484.0 >= length * length * length * length)) return;
+    if(!spans_an_area(a2, length)) return;
     pts.clear();
     third.clear();
     for(std::size_t e : lp) {
@@ -201,10 +220,7 @@ Hole_fill fill_holes(const std::vector<typename GT::Point_3>& points,
       third.push_back(points[o]);
     }
     fill.clear();
-    namespace PMP = CGAL::Polygon_mesh_processing;
-    PMP::triangulate_hole_polyline(pts, third, std::back_inserter(fill),
-                                   CGAL::parameters::use_2d_constrained_delaunay_triangulation(false)
-                                     .do_not_use_cubic_algorithm(n > 100));
+    triangulate_loop(pts, third, std::back_inserter(fill));
     if(fill.size() != n - 2) return;
     // orientation: the rim edge k -> k + 1 runs along its face, so the fill runs k + 1 -> k
     int flip = -1;
