@@ -12,6 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Hex_meshing_3/quality.h>
 #include <CGAL/Hex_meshing_3/internal/Octree_mesher_3.h>
+#include <CGAL/Hex_meshing_3/internal/hole_fill.h>
 #include <CGAL/Hex_meshing_3/internal/sealed_border_edges.h>
 #include <CGAL/make_hex_mesh_3.h>
 
@@ -1683,6 +1684,20 @@ void test_thin_part_refinement()
 void test_sealed_border_edges()
 {
   namespace HI = CGAL::Hex_meshing_3::internal;
+  {
+    // the holes' loop walk: two triangular loops touching at vertex 0 (a figure eight), the walk
+    // passing through 0 in the middle of the first loop it takes; a chain that does not close
+    std::cout << "loops of border edges\n";
+    const std::vector<std::array<int, 2>> eight = {{{1, 2}}, {{2, 0}}, {{0, 3}}, {{3, 4}}, {{4, 0}}, {{0, 1}}};
+    std::vector<std::vector<std::size_t>> loops;
+    auto tail = [&](std::size_t i) { return eight[i][0]; };
+    auto head = [&](std::size_t i) { return eight[i][1]; };
+    assert(HI::split_into_loops(eight.size(), tail, head, loops));
+    assert(loops == (std::vector<std::vector<std::size_t>>{{2, 3, 4}, {5, 0, 1}}));
+    assert(!HI::split_into_loops(2, tail, head, loops));   // 1 -> 2 -> 0: a dead end
+    // a square folded flat spans no area; a 1 x 20 rectangle does (the limit is 1 x 119)
+    assert(!HI::spans_an_area(0.0, 4.0) && HI::spans_an_area(20.0 * 20.0, 42.0) && !HI::spans_an_area(120.0 * 120.0, 242.0));
+  }
   std::cout << "sealed border edges\n";
   typedef K::Segment_3 S;
   const Point_3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0), e(2, 0, 0), f(2, 1, 0);
