@@ -909,8 +909,7 @@ int main(int argc, char** argv)
           HM::Feature_curves_3<K>::Options lopt = fopt;
           lopt.feature_angle = feature_angle - feature_tolerance;
           lopt.scale = 0;
-          lopt.contrast = 0;
-          lopt.soft_angle = 0;
+          lopt.contrast = 0;   // (and so no soft crease)
           const HM::Feature_curves_3<K> loose(domain, lopt);
           const HM::Feature_fidelity ft =
               HM::feature_fidelity_with_tolerance(mesh, domain, features, loose, feature_angle, feature_tolerance, ff.sample_spacing);

@@ -88,17 +88,16 @@ public:
     /// the creases between the flat facets of a faceted blend or fillet (fandisk's blends: 17 to
     /// 22 degrees), which a mesh boundary following them keeps as close to the input as the
     /// facets are (crossing them, its faces cut under the creases). Soft creases need the
-    /// judgement of `scale` or `contrast`, at this angle: sharp at the scale, and standing out
-    /// 3 x `contrast` times from the mean angle of the edges around below this angle (no pass
-    /// for twice the angle, as sharp edges have; a faceted
-    /// blend's creases run between flat facets; the elephant's coarse triangulation creases by
-    /// 20 to 30 degrees among creases of 5 to 15: at 3 x 3 it keeps 2 of 1,132), on their own
-    /// curves (chained apart from the sharp edges, whose judgement they leave as it was), at
-    /// least half of a curve's length passing, and a curve at least 4 x `scale` long (twice the
-    /// finest size when `make_hex_mesh_3()` builds the curves). An edge that is a feature of
-    /// another kind (a part border) is no soft crease. Without `scale` and `contrast`, no edge is
-    /// soft. The coarse triangulation of a smooth shape creases too, shortly and among creases
-    /// of all angles: few pass. Not counted by `feature_fidelity()` as input features.
+    /// judgement of `scale` or `contrast` (without both, no edge is soft), at this angle: sharp
+    /// at the scale, and standing out 3 x `contrast` times from the mean angle of the edges
+    /// around below this angle, with no pass at twice the angle as sharp edges have (a faceted
+    /// blend's creases run between flat facets; the coarse triangulation of a smooth shape
+    /// creases by 20 to 30 degrees among creases of 5 to 15: the elephant keeps 2 of 1,132).
+    /// They are judged on their own curves, chained apart from the sharp edges (whose judgement
+    /// they leave as it was): at least half of a curve's length passing, the curve at least 4 x
+    /// `scale` long (twice the finest size when `make_hex_mesh_3()` builds the curves). An edge
+    /// that is a feature of another kind (a part border) is no soft crease. Not counted by
+    /// `feature_fidelity()` as input features.
     double soft_angle = 0;
   };
 
@@ -286,12 +285,12 @@ private:
       remove_dropped_edges(edge_faces, edge_consistent);
       bridge_seams(internal::seam_tolerance(d.bbox()), cos_max, judge, edge_faces, edge_consistent);
     }
-    if(judge) m_smooth_edges = judge_sharp_edges(d, o, cos_max, false, across, same_way, slot_angle, edge_faces, edge_consistent);
+    if(judge) m_smooth_edges = judge_sharp_edges(d, o, cos_max, cos_max, false, across, same_way, slot_angle, edge_faces, edge_consistent);
     if(!soft.empty()) {
       // the soft creases judged on their own curves (the sharp edges' judgement as without them),
       // then merged with the features kept
       m_edges.swap(soft);
-      m_smooth_soft_edges = judge_sharp_edges(d, o, cos_soft, true, across, same_way, slot_angle, soft_faces, soft_consistent);
+      m_smooth_soft_edges = judge_sharp_edges(d, o, cos_max, cos_soft, true, across, same_way, slot_angle, soft_faces, soft_consistent);
       m_edges.swap(soft);
       // (both sorted by vertices; an edge in both - a seam bridge along an input edge - once, as
       // the feature it already was)
@@ -443,9 +442,9 @@ private:
 
   // The hole-rim test with the hole filled (see `mark_smooth_hole_rims()`): each closed chain of
   // at most `max_fill` edges is split into simple loops (its edges as their faces run along
-  // them: `internal::split_into_loops()`, as the domain's own fill), each loop is filled, and `smooth_length[root]` gets the length of the
-  // edges whose face meets the fill's triangle on the edge within the feature angle; `filled[root]`
-  // is set if every loop of the chain was filled.
+  // them: `internal::split_into_loops()`, as the domain's own fill), each loop is filled, and
+  // `smooth_length[root]` gets the length of the edges whose face meets the fill's triangle on
+  // the edge within the feature angle; `filled[root]` is set if every loop of the chain was filled.
   template <typename Union_find>
   void fill_hole_rims(const Surface_domain_3<GeomTraits>& d, const std::vector<std::size_t>& rim,
                       const std::vector<Open_edge>& open, Union_find& uf, const std::vector<char>& closed,
@@ -600,7 +599,7 @@ private:
   // `o.contrast` (see `Options::scale` and `Options::contrast`); with `soft`, the edges are the
   // soft creases (alone: their own curves), judged at the soft angle (`cos_limit`), by 3 x the
   // contrast, and their curves at least 4 x the scale long. Returns how many edges it left out.
-  std::size_t judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_limit, bool soft,
+  std::size_t judge_sharp_edges(const Surface_domain_3<GeomTraits>& d, const Options& o, double cos_max, double cos_limit, bool soft,
                       const std::vector<Index>& across, const std::vector<char>& same_way,
                       const std::vector<float>& slot_angle, const std::vector<std::array<Index, 2>>& edge_faces, const std::vector<char>& edge_consistent)
   {
@@ -695,7 +694,7 @@ private:
     std::vector<char> kept(m_edges.size(), 1);
     m_corners.clear();
     m_curves.clear();
-    chain(std::cos(o.feature_angle * CGAL_PI / 180.0));
+    chain(cos_max);
     auto edge_index = [&](Index u, Index v) {
       const std::uint64_t key = u < v ? (std::uint64_t(u) << 32 | v) : (std::uint64_t(v) << 32 | u);
       const auto it = std::lower_bound(m_edges.begin(), m_edges.end(), key, [](const Edge& x, std::uint64_t k) {

@@ -625,8 +625,7 @@ private:
   {
     Bbox_3 b;
     for(const Triangle_indices& t : m_indices) for(std::uint32_t v : t) b += m_points[v].bbox();
-    std::vector<bool> skip(m_two_sided.begin(), m_two_sided.end());
-    const internal::Hole_fill f = internal::fill_holes<GeomTraits>(m_points, m_indices, skip, internal::seam_tolerance(b));
+    const internal::Hole_fill f = internal::fill_holes<GeomTraits>(m_points, m_indices, m_two_sided, internal::seam_tolerance(b));
     for(std::size_t i = 0; i < f.triangles.size(); ++i) {
       const int part = m_patch[f.loop_face[f.loop_of[i]]];
       m_indices.push_back(f.triangles[i]);

@@ -133,6 +133,10 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     if(!vknown[v]) { vclosest[v] = domain.closest_point_and_triangle(mesh.points[v]); vknown[v] = 1; }
     return vclosest[v];
   };
+  // a point of the domain that caps a hole: on a fill, or on a border edge (not along a seam)
+  auto caps_hole = [&](const std::pair<Point_3, std::size_t>& near) {
+    return domain.is_fill(near.second) || (border_tree && CGAL::to_double(border_tree->squared_distance(near.first)) <= tiny * tiny);
+  };
   for(const auto& f : mesh.boundary_faces) {
     if(f.patch < 6) continue;
     const Point_3 &a = mesh.points[f.vertices[0]], &b = mesh.points[f.vertices[1]], &c = mesh.points[f.vertices[2]],
@@ -143,8 +147,7 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
                          (a.z() + b.z() + c.z() + d.z()) / 4);
     const auto centre_near = domain.closest_point_and_triangle(centre);
     const Point_3& centre_closest = centre_near.first;
-    if(domain.is_fill(centre_near.second) ||
-       (border_tree && CGAL::to_double(border_tree->squared_distance(centre_closest)) <= tiny * tiny)) {
+    if(caps_hole(centre_near)) {
       ++r.cap_faces;
       r.cap_area += 0.5 * std::sqrt(CGAL::to_double(CGAL::cross_product(c - a, d - b).squared_length()));
       continue;
@@ -163,11 +166,7 @@ Boundary_fidelity boundary_fidelity(const HexMesh& mesh, const Domain& domain, s
     r.face_distances.push_back({worst, where});
     r.face_indices.push_back(std::size_t(&f - mesh.boundary_faces.data()));
     r.face_worst_points.push_back(at);
-    if(at < 4 && worst > 0) {
-      const auto& near = closest_of_vertex(std::size_t(f.vertices[at]));
-      r.face_worst_on_border.push_back(domain.is_fill(near.second) ||
-                                       (border_tree && CGAL::to_double(border_tree->squared_distance(near.first)) <= tiny * tiny));
-    } else r.face_worst_on_border.push_back(0);
+    r.face_worst_on_border.push_back(at < 4 && worst > 0 && caps_hole(closest_of_vertex(std::size_t(f.vertices[at]))));
     sum += worst;
   }
   if(r.surface_faces) r.mean_face_distance = sum / double(r.surface_faces);
