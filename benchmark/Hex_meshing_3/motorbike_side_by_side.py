@@ -23,8 +23,16 @@ non-orthogonality and skewness, hexahedra, and the boundary fidelity: foamToSurf
 box patches left out, measured both ways against the input by surface_distance (the same tool
 for both: area-uniform samples, CGAL AABB tree).
 
+With --repeat N, each mesher is timed N times, the runs alternating (hexmesh, snappyHexMesh,
+hexmesh, ...: a slow spell of the machine falls on both), and the table gives the median wall
+seconds and peak memory with their range; the ratios are the medians'. The first runs' meshes
+are the ones checked and measured (the others write the same meshes again: hexmesh into
+DIR/hexmesh_repeat, snappyHexMesh from a new blockMesh). On this 2-core VM the same run of
+either mesher varies by 5-10 % from run to run (snappyHexMesh's by up to 2 times over days).
+
 Usage: benchmark/Hex_meshing_3/motorbike_side_by_side.py [--hexmesh PATH] [--work DIR]
                                                          [--skip-snappy] [--samples N] [--no-gaps]
+                                                         [--repeat N]
 Writes DIR/results.json and prints a table. Needs OpenFOAM (Debian's openfoam) for snappy and
 checkMesh; builds surface_distance (cmake --build build --target surface_distance) if missing.
 """
@@ -90,6 +98,19 @@ def timed(cmd, cwd, log):
         return r.returncode, None, None
 
 
+def median(values):
+    v = sorted(values)
+    n = len(v)
+    return v[n // 2] if n % 2 else (v[n // 2 - 1] + v[n // 2]) / 2
+
+
+def spread(value, runs, fmt):
+    """a value, and the range of the runs it is the median of, if more than one"""
+    if len(runs) < 2:
+        return fmt % value
+    return (fmt + " (" + fmt + "-" + fmt + ")") % (value, min(runs), max(runs))
+
+
 def checkmesh(case):
     out = {}
     r = subprocess.run(["checkMesh", "-case", case, "-constant", "-allTopology"], capture_output=True, text=True, env=ENV)
@@ -139,7 +160,10 @@ def main():
     ap.add_argument("--samples", type=int, default=200000, help="points sampled on each surface for the fidelity")
     ap.add_argument("--no-gaps", action="store_true", help="hexmesh without the refinement of gaps and plates thinner "
                     "than 6 cells to 1/64 m (--thin-cells 6 --thin-size 0.015625)")
+    ap.add_argument("--repeat", type=int, default=1, help="time each mesher N times, alternately; report the medians")
     args = ap.parse_args()
+    if args.repeat < 1:
+        sys.exit("--repeat: at least 1")
     bike = driver.find_input("motorBike.obj.gz")
     if not bike:
         sys.exit("motorBike.obj.gz not found (../shared/data or Debian's openfoam-examples)")
@@ -150,7 +174,7 @@ def main():
         subprocess.run(["cmake", "--build", os.path.join(ROOT, "build"), "--target", "surface_distance"], check=True)
     work = os.path.abspath(args.work or tempfile.mkdtemp(prefix="motorbike_"))
     os.makedirs(work, exist_ok=True)
-    results = {"input": bike, "machine": os.uname().nodename, "cores_used": 1}
+    results = {"input": bike, "machine": os.uname().nodename, "cores_used": 1, "repeat": args.repeat}
 
     # ours
     case = os.path.join(work, "hexmesh")
@@ -159,7 +183,7 @@ def main():
     options = HEXMESH_OPTIONS + ([] if args.no_gaps else GAP_OPTIONS)
     rc, wall, mib = timed([args.hexmesh, bike, "-o", case, "--report", rep, "--force", "-q"] + options,
                           work, os.path.join(work, "hexmesh.log"))
-    ours = {"exit": rc, "options": options, "seconds": wall, "peak_MiB": mib}
+    ours = {"exit": rc, "options": options, "seconds": wall, "peak_MiB": mib, "runs_seconds": [wall], "runs_peak_MiB": [mib]}
     if rc == 0:
         ours["checkMesh"] = checkmesh(case)
         ours["fidelity"] = fidelity(case, "hexmesh", work, args.surface_distance, bike, args.samples)
@@ -196,10 +220,34 @@ def main():
                 break
         snappy["seconds"] = snappy.get("snappyHexMesh", {}).get("seconds")
         snappy["peak_MiB"] = snappy.get("snappyHexMesh", {}).get("peak_MiB")
+        snappy["runs_seconds"], snappy["runs_peak_MiB"] = [snappy["seconds"]], [snappy["peak_MiB"]]
         if snappy.get("snappyHexMesh", {}).get("exit") == 0:
             snappy["checkMesh"] = checkmesh(case)
             snappy["fidelity"] = fidelity(case, "snappyHexMesh", work, args.surface_distance, bike, args.samples)
         results["snappyHexMesh"] = snappy
+
+    # the repeated runs, alternating; then the medians
+    snappy_ok = results.get("snappyHexMesh", {}).get("snappyHexMesh", {}).get("exit") == 0
+    for i in range(1, args.repeat):
+        if ours["exit"] == 0:
+            rc, wall, mib = timed([args.hexmesh, bike, "-o", os.path.join(work, "hexmesh_repeat"), "--force", "-q"] + options,
+                                  work, os.path.join(work, "hexmesh_repeat.log"))
+            if rc == 0 and wall is not None:
+                ours["runs_seconds"].append(wall)
+                ours["runs_peak_MiB"].append(mib)
+        if snappy_ok:
+            case = os.path.join(work, "snappyHexMesh")
+            snappy = results["snappyHexMesh"]
+            rc, _, _ = timed(["blockMesh"], case, os.path.join(work, "blockMesh_repeat.log"))
+            if rc == 0:
+                rc, wall, mib = timed(["snappyHexMesh", "-overwrite"], case, os.path.join(work, "snappyHexMesh_repeat.log"))
+                if rc == 0 and wall is not None:
+                    snappy["runs_seconds"].append(wall)
+                    snappy["runs_peak_MiB"].append(mib)
+    for r in (results.get("hexmesh", {}), results.get("snappyHexMesh", {})):
+        if len(r.get("runs_seconds", [])) > 1 and None not in r["runs_seconds"]:
+            r["seconds"] = median(r["runs_seconds"])
+            r["peak_MiB"] = median(r["runs_peak_MiB"])
 
     # each boundary's samples farther than a quarter of the finest surface size from the input, by
     # the input feature nearest to them (within two finest cells): where each stands off (the
@@ -215,8 +263,8 @@ def main():
     names = [n for n in ("hexmesh", "snappyHexMesh") if n in results]
     rows = [("cells", lambda r: r["checkMesh"]["cells"]),
             ("checkMesh hexahedra (6 faces)", lambda r: r["checkMesh"]["hexahedra"]),
-            ("wall seconds", lambda r: r["seconds"]),
-            ("peak MiB", lambda r: round(r["peak_MiB"])),
+            ("wall seconds" + (f" (median of {args.repeat})" if args.repeat > 1 else ""), lambda r: spread(r["seconds"], r["runs_seconds"], "%.2f")),
+            ("peak MiB" + (f" (median of {args.repeat})" if args.repeat > 1 else ""), lambda r: spread(r["peak_MiB"], r["runs_peak_MiB"], "%.0f")),
             ("checkMesh -allTopology", lambda r: r["checkMesh"]["allTopology"]),
             ("checkMesh -allTopology -allGeometry", lambda r: r["checkMesh"]["allGeometry"] + (f" ({len(r['checkMesh']['flags'])} flags)" if r["checkMesh"]["flags"] else "")),
             ("-allGeometry concave cells", lambda r: r["checkMesh"]["concave_cells"]),
