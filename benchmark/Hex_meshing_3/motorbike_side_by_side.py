@@ -43,6 +43,7 @@ import math
 import os
 import re
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -96,12 +97,6 @@ def timed(cmd, cwd, log):
         return r.returncode, float(wall), float(kb) / 1024
     except (OSError, ValueError):
         return r.returncode, None, None
-
-
-def median(values):
-    v = sorted(values)
-    n = len(v)
-    return v[n // 2] if n % 2 else (v[n // 2 - 1] + v[n // 2]) / 2
 
 
 def spread(value, runs, fmt):
@@ -228,7 +223,7 @@ def main():
 
     # the repeated runs, alternating; then the medians
     snappy_ok = results.get("snappyHexMesh", {}).get("snappyHexMesh", {}).get("exit") == 0
-    for i in range(1, args.repeat):
+    for _ in range(1, args.repeat):
         if ours["exit"] == 0:
             rc, wall, mib = timed([args.hexmesh, bike, "-o", os.path.join(work, "hexmesh_repeat"), "--force", "-q"] + options,
                                   work, os.path.join(work, "hexmesh_repeat.log"))
@@ -238,7 +233,7 @@ def main():
         if snappy_ok:
             case = os.path.join(work, "snappyHexMesh")
             snappy = results["snappyHexMesh"]
-            rc, _, _ = timed(["blockMesh"], case, os.path.join(work, "blockMesh_repeat.log"))
+            rc = timed(["blockMesh"], case, os.path.join(work, "blockMesh_repeat.log"))[0]
             if rc == 0:
                 rc, wall, mib = timed(["snappyHexMesh", "-overwrite"], case, os.path.join(work, "snappyHexMesh_repeat.log"))
                 if rc == 0 and wall is not None:
@@ -246,8 +241,8 @@ def main():
                     snappy["runs_peak_MiB"].append(mib)
     for r in (results.get("hexmesh", {}), results.get("snappyHexMesh", {})):
         if len(r.get("runs_seconds", [])) > 1 and None not in r["runs_seconds"]:
-            r["seconds"] = median(r["runs_seconds"])
-            r["peak_MiB"] = median(r["runs_peak_MiB"])
+            r["seconds"] = statistics.median(r["runs_seconds"])
+            r["peak_MiB"] = statistics.median(r["runs_peak_MiB"])
 
     # each boundary's samples farther than a quarter of the finest surface size from the input, by
     # the input feature nearest to them (within two finest cells): where each stands off (the

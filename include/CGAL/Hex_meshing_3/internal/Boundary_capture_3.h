@@ -2721,6 +2721,8 @@ private:
         q0.resize(all.size());
         c0.resize(all.size());
         for(std::size_t i = 0; i < all.size(); ++i) { q0[i] = current_quality(all[i]); c0[i] = char(cell_concave(all[i])); }
+        // the quality cell i may not fall below (nor to `degenerate_quality`)
+        auto cell_floor = [&](std::size_t i) { return (std::min)(q0[i], floor_quality); };
         s0.resize(all.size());
         // (a sheet's cap vertex and a feature vertex guard the face splits too: on bunny shifted
         // by round-off, a curve vertex put back without it left a face failing OpenFOAM's tet
@@ -2751,14 +2753,14 @@ private:
             if(pass + 1 >= opt.joint_hopeless_passes && opt.joint_hopeless_passes > 0) {
               bool hopeless = false;
               for(std::size_t i = 0; i < all.size() && !hopeless; ++i)
-                hopeless = current_quality(all[i]) < (std::max)(degenerate_quality, (std::min)(q0[i], floor_quality)) - opt.joint_hopeless_margin;
+                hopeless = current_quality(all[i]) < (std::max)(degenerate_quality, cell_floor(i)) - opt.joint_hopeless_margin;
               if(hopeless) break;
             }
           }
           bool ok = true;
           for(std::size_t i = 0; i < all.size() && ok; ++i) {
             const double q = current_quality(all[i]);
-            ok = q > degenerate_quality && q >= (std::min)(q0[i], floor_quality) && (c0[i] || !cell_concave(all[i]));
+            ok = q > degenerate_quality && q >= cell_floor(i) && (c0[i] || !cell_concave(all[i]));
           }
           for(std::size_t i = 0; guard_splits && i < all.size() && ok; ++i) ok = cell_split(all[i]) >= (std::min)(s0[i], opt.min_face_split_quality);
           if(ok) {
