@@ -1528,6 +1528,41 @@ void test_polyhedral_half_splits()
     std::cout << "  concave cells as OpenFOAM counts them: a face split into coplanar quarters (1 cell); a 1 % "
                  "roof makes it convex; a saddle needs the face centre raised " << centre_rise << " x as much\n";
   }
+  {
+    // the margin the capture's last repair raises (`hex_concavity_margin()`): 1/sqrt(2) on a cube,
+    // and below OpenFOAM's 1e-6 exactly where its concave test (from the faces' centres and area
+    // vectors, as `concave_cells()` takes them) calls a hexahedron with whole faces concave, on
+    // hexahedra of random shape (the unit cube's corners moved by up to 0.1 to 0.7 along each axis)
+    namespace I = HM::internal;
+    I::Vec3 cube[8];
+    for(int k = 0; k < 8; ++k) {
+      const auto& u = HM::hex_corner_offsets()[std::size_t(k)];
+      cube[k] = I::Vec3{{double(u[0]), double(u[1]), double(u[2])}};
+    }
+    assert(std::abs(I::hex_concavity_margin(cube) - std::sqrt(0.5)) < 1e-12);
+    CGAL::Random rnd(g_seed + 7);
+    int concave = 0, convex = 0;
+    double smallest = 1;
+    for(int t = 0; t < 4000; ++t) {
+      I::Vec3 x[8];
+      const double r = rnd.get_double(0.1, 0.7);
+      for(int k = 0; k < 8; ++k)
+        for(int a = 0; a < 3; ++a) x[k][std::size_t(a)] = cube[k][std::size_t(a)] + rnd.get_double(-r, r);
+      std::vector<I::Vec3> fc(6), fa(6);
+      for(int k = 0; k < 6; ++k) {
+        const auto& f = HM::hex_local_faces()[std::size_t(k)];
+        I::foam_face_centre_and_area(4, [&](std::size_t i) { return x[f[i]]; }, fc[std::size_t(k)], fa[std::size_t(k)]);
+      }
+      const double mg = I::hex_concavity_margin(x);
+      const bool c = I::concave_cell(fc, fa);
+      if(std::abs(mg - 1e-6) > 1e-12) assert(c == (mg < 1e-6));
+      (c ? concave : convex) += 1;
+      smallest = (std::min)(smallest, mg);
+    }
+    assert(concave > 100 && convex > 100);
+    std::cout << "  concavity margin: cube " << I::hex_concavity_margin(cube) << ", OpenFOAM's test agreed on "
+              << concave << " concave and " << convex << " convex random hexahedra (smallest margin " << smallest << ")\n";
+  }
 }
 
 // Curvature refinement: cut cells in which the surface normals differ by more than the angle get

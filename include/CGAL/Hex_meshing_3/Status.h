@@ -186,6 +186,7 @@ struct Meshing_statistics
   double staircase_gap = 0.4;               ///< the kept mesh's staircase distance from the surface, in cell sizes (0.4, then 0.25, 0.2)
   bool far_faces_over_thin_parts = false;   ///< the first mesh's only faults were boundary faces beyond a quarter surface size, all over parts or gaps of the input thinner than two surface sizes: the closer staircases were not made
   std::size_t split_warp_repairs = 0;       ///< vertex moves of the repair of warped faces split in four (concave for OpenFOAM)
+  std::size_t concave_repairs = 0;          ///< vertex moves of the repair of cells at or near OpenFOAM's concave test, last in the polish
   std::size_t skewed_faces = 0;             ///< faces skewed beyond 3.5 found (the buffer cells at them removed)
   std::size_t non_orthogonal_faces = 0;     ///< faces non-orthogonal beyond 70 degrees found after the repairs (the buffer cells at them removed)
   std::size_t foam_fault_cells = 0;         ///< buffer cells found concave, or at a face failing the tet decomposition, as checkMesh -allGeometry finds them on the OpenFOAM export (removed; `make_hex_mesh_3()`)

@@ -175,6 +175,28 @@ inline Vec3 hex_centre(const Vec3* x)
   return mul(cc, 0.125);
 }
 
+// How far a hexahedron with whole faces is from OpenFOAM's concave test (`concave_cell()`, checkMesh
+// -allGeometry): the smallest, over its faces i and the other faces j, of -cos of the angle between
+// face i's outward normal and the line from its centre to face j's centre. The test calls the
+// cell concave below 1e-6; a cube has 1/sqrt(2).
+inline double hex_concavity_margin(const Vec3* x)
+{
+  Vec3 fc[6], fn[6];
+  for(int k = 0; k < 6; ++k) {
+    const auto& f = hex_local_faces()[std::size_t(k)];
+    foam_face_centre_and_area(4, [&](std::size_t i) { return x[f[i]]; }, fc[k], fn[k]);
+    fn[k] = mul(fn[k], 1.0 / (std::max)(norm(fn[k]), 1e-300));
+  }
+  double m = 1;
+  for(int i = 0; i < 6; ++i)
+    for(int j = 0; j < 6; ++j) {
+      if(j == i) continue;
+      const Vec3 d = sub(fc[j], fc[i]);
+      m = (std::min)(m, -dot(d, fn[i]) / (std::max)(norm(d), 1e-300));
+    }
+  return m;
+}
+
 // OpenFOAM's cell centre of a hexahedron (`primitiveMesh::makeCellCentresAndVols()`, as
 // `OpenFOAM_geometry::compute()`): the faces' centres and area vectors, then the pyramids on the
 // faces from the average of the face centres, their centroids weighted by their volumes. A face
@@ -499,6 +521,8 @@ public:
     int face_split_passes = 4;              ///< sweeps of that repair (and of the split-face warp's)
     double max_split_face_warp = 0.05;      ///< faces split in four warped beyond this (x edge) are repaired last
     double max_non_orthogonality = 50;      ///< degrees: the cells at faces beyond it are worked on after the repairs
+    double concave_margin = 0.05;           ///< `repair_concave_cells()` works last on the cells with whole faces whose `hex_concavity_margin()` is below this
+    double split_concave_margin = 0.5;      ///< ... and lets no cell with a hanging node on a face lose margin below min(its own, this)
     bool feature_pillows = false;           ///< convex sharp curves get a sheet of hexahedra along their chain (`pillow_chains()`)
     double pillow_max_offset = 0.5;         ///< ... if their chain's vertices lie this close to the curve on average (x local size) before snapping
     double pillow_max_offset_closed = 2.5;  ///< ... or, for a closed curve with no corner, if none of them lies farther than this
@@ -614,6 +638,8 @@ public:
     substep("polish.turns");
     if(!cancelled) unfold_faces();
     substep("polish.unfold");
+    if(!cancelled) repair_concave_cells();
+    substep("polish.concave");
     lap("polish");
     assign_patches();
     release_work_data();
@@ -2185,6 +2211,10 @@ private:
   {
     // the polish counts the warp too (its face splits are guarded apart, in `improve()`)
     if(use_split_warp || use_polish) return (std::min)(q, split_warp_quality(c, x));
+    if(use_concavity) {   // that repair: the margin below its threshold
+      const double mg = split_cell[c] ? 1.0 : hex_concavity_margin(x);
+      return mg < opt.concave_margin ? (std::min)(q, mg / opt.concave_margin) : q;
+    }
     if(use_non_orthogonality) {   // that repair: the worst face's angle only (the scaled Jacobian is guarded apart)
       const double a = cell_non_orthogonality(c);
       return q <= 0 ? q : a <= opt.max_non_orthogonality ? 1.0 : 1 - (a - opt.max_non_orthogonality) / (90 - opt.max_non_orthogonality);
@@ -2289,8 +2319,8 @@ private:
     base_old.resize(cells.size());
     // nor may the non-orthogonality rise beyond max(what it was, 60 degrees)
     double nonortho_cap = 0;
-    const bool guard_sj = use_face_splits || use_folds || use_split_warp || use_non_orthogonality || use_polish;
-    const bool guard_split = use_polish || use_non_orthogonality;
+    const bool guard_sj = use_face_splits || use_folds || use_split_warp || use_non_orthogonality || use_polish || use_concavity;
+    const bool guard_split = use_polish || use_non_orthogonality || use_concavity;
     if(guard_sj) {
       for(std::size_t i = 0; i < cells.size(); ++i) base_old[i] = cell_sj(cells[i]);
       // and no face split may get worse below the repair's threshold (in the non-orthogonality
@@ -2302,6 +2332,10 @@ private:
         if(second_polish) { conc_old.resize(cells.size()); for(std::size_t i = 0; i < cells.size(); ++i) conc_old[i] = cell_concave(cells[i]); }
       }
       nonortho_cap = (std::max)(use_polish ? opt.max_non_orthogonality : 60.0, max_non_orthogonality(cells));
+      if(use_concavity) {
+        margin_old.resize(cells.size());
+        for(std::size_t i = 0; i < cells.size(); ++i) margin_old[i] = split_cell[cells[i]] ? cell_concavity_margin(cells[i]) : 0.0;
+      }
     }
     Vec3 best = x0;
     double fb = f0, mb = m0;
@@ -2326,13 +2360,14 @@ private:
         const double q = cell_quality_above(cells[i], floor, guard_sj ? &sj : nullptr);
         const bool fails = q < floor || (guard_sj && sj < (std::min)(base_old[i], sj_floor)) ||
                            (guard_split && cell_split(cells[i]) < (std::min)(split_old[i], opt.min_face_split_quality)) ||
-                           (use_polish && second_polish && !conc_old[i] && cell_concave(cells[i]));
+                           (use_polish && second_polish && !conc_old[i] && cell_concave(cells[i])) ||
+                           (use_concavity && split_cell[cells[i]] && cell_concavity_margin(cells[i]) < (std::min)(margin_old[i], opt.split_concave_margin));
         if(fails) { fail_first(k); return; }
         trial_q[i] = q;
       }
       double f = 1, mean = 0;
       for(std::size_t i = 0; i < cells.size(); ++i) { f = (std::min)(f, trial_q[i]); mean += trial_q[i]; }
-      if((use_face_splits || use_folds || use_split_warp || use_polish) && max_non_orthogonality(cells) > nonortho_cap) return;
+      if((use_face_splits || use_folds || use_split_warp || use_polish || use_concavity) && max_non_orthogonality(cells) > nonortho_cap) return;
       // better: a higher minimum, or the same minimum (not below the start's) with a higher sum
       if(f > fb + 1e-4 || (f >= f0 && f >= fb - 1e-12 && mean > mb + 1e-3)) { fb = f; mb = mean; best = x; moved_q = trial_q; }
     };
@@ -3138,6 +3173,17 @@ private:
     return false;
   }
 
+  // the repairs' floor of the scaled Jacobian (`sj_floor`): max(0.25, the mesh's minimum); returns
+  // the floor before
+  double set_repair_sj_floor()
+  {
+    double sj_min = 1;
+    for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_sj(c));
+    const double before = sj_floor;
+    sj_floor = (std::max)(0.25, sj_min);
+    return before;
+  }
+
   // OpenFOAM's "face tets" (checkMesh -allGeometry) fail at a face none of whose diagonal splits
   // gives positive tetrahedra with the cell centres on both sides: a folded face of a cell the
   // optimisation left valid. Made a quality of its own, the splits trade the scaled Jacobian away
@@ -3149,9 +3195,7 @@ private:
   // does a face's non-orthogonality rise above max(its own, 60 degrees). Other cells are not touched.
   void repair_face_splits()
   {
-    double sj_min = 1;
-    for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_sj(c));
-    sj_floor = (std::max)(0.25, sj_min);
+    set_repair_sj_floor();
     {
       // the cell across each whole face: the other cell at its first corner with the same face
       // (from the cells around the vertices: the map of the open faces used before added 2 MB to
@@ -3224,10 +3268,7 @@ private:
   // not the diagonals).
   void unfold_faces()
   {
-    double sj_min = 1;
-    for(Index c = 0; c < m.hexahedra.size(); ++c) sj_min = (std::min)(sj_min, cell_sj(c));
-    const double floor_before = sj_floor;
-    sj_floor = (std::max)(0.25, sj_min);
+    const double floor_before = set_repair_sj_floor();
     use_folds = true;
     // each cell's score: all of them at the first selection (the centres computed once), then
     // again only those of the cells the last sweep's moves touched (`swept_cells`) and of the
@@ -3256,6 +3297,48 @@ private:
     use_folds = false;
     sj_floor = floor_before;
   }
+
+  // The cells OpenFOAM would call concave (checkMesh -allGeometry) go in the cleanup, leaving their
+  // neighbours' faces standing off the surface. The guards keep moves from making cells concave
+  // (the second polish's, the joint moves'), but a cell the projection made concave stayed so
+  // (motorBike: 11 buffer cells, concave with their faces whole). Last, after the polish: the
+  // cells with whole faces whose `hex_concavity_margin()` is below `opt.concave_margin` have their
+  // vertices moved by `improve()`, margin / concave_margin counted in their quality, under the
+  // face-split repair's guards; and no cell with a hanging node on a face may lose margin below
+  // min(its own, `opt.split_concave_margin`): such a cell can be concave for OpenFOAM through its
+  // split faces' pieces at a whole-face margin of 0.24 (bunny at --thin-cells 5: made so by a
+  // version that raised their margins to 0.2 unguarded). Those cells are not repaired (their test
+  // needs the pieces with the export's bulge, `IO::internal::foam_points()`).
+  void repair_concave_cells()
+  {
+    split_cell.assign(m.hexahedra.size(), 0);
+    for(const auto& hn : m.hanging_nodes) {
+      const Index m0 = hn.masters[0];
+      for(Index i = cstart[m0]; i < cstart[m0 + 1]; ++i) {
+        const auto& H = m.hexahedra[cinc[i]];
+        bool all = true;
+        for(int j = 1; j < hn.number_of_masters && all; ++j) all = std::find(H.begin(), H.end(), hn.masters[std::size_t(j)]) != H.end();
+        if(all) split_cell[cinc[i]] = 1;
+      }
+    }
+    const double floor_before = set_repair_sj_floor();
+    use_concavity = true;
+    // (each cell's margin computed at the first selection, then again only where the last
+    // sweep's moves touched it)
+    std::vector<double> margin(m.hexahedra.size());
+    auto update = [&](Index c) { margin[c] = split_cell[c] ? 1.0 : cell_concavity_margin(c); };
+    for(Index c = 0; c < m.hexahedra.size(); ++c) update(c);
+    bool first = true;
+    rep.concave_repairs += repair_sweeps([&](std::vector<char>& chosen) {
+      if(!first) for(Index c : swept_cells) update(c);
+      first = false;
+      for(Index c = 0; c < m.hexahedra.size(); ++c) chosen[c] = margin[c] < opt.concave_margin;
+    }, opt.face_split_passes);
+    use_concavity = false;
+    sj_floor = floor_before;
+    std::vector<char>().swap(split_cell);
+  }
+  double cell_concavity_margin(Index c) const { Vec3 x[8]; corners(c, x); return hex_concavity_margin(x); }
 
   // the corners of the cells v moves (`affected_cells()`, into `cells`), a hanging one as its
   // independent masters, with repeats (v among them)
@@ -4117,6 +4200,9 @@ private:
   bool use_face_splits = false;   // cell_quality() counts the face splits (the repair)
   bool use_folds = false;         // cell_quality() counts the folds of the whole faces (`unfold_faces()`)
   bool use_split_warp = false;    // cell_quality() counts the warp of faces split in four (that repair)
+  bool use_concavity = false;     // cell_quality() counts the concavity margin (`repair_concave_cells()`)
+  std::vector<char> split_cell;    // (that repair) the cells with a hanging node on a face
+  std::vector<double> margin_old;  // (that repair, `improve()`) their margins before the move
   bool use_non_orthogonality = false;   // cell_quality() is the worst face's non-orthogonality (that repair)
   Sparse_lists<std::uint8_t> split_faces;   // per cell: its local faces split in four by a face node
   double sj_floor = 0.2;          // in the repair: nor below min(its scaled Jacobian, this)
