@@ -223,6 +223,7 @@ def main():
 
     # the repeated runs, alternating; then the medians
     snappy_ok = results.get("snappyHexMesh", {}).get("snappyHexMesh", {}).get("exit") == 0
+    snappy_case = os.path.join(work, "snappyHexMesh")
     for _ in range(1, args.repeat):
         if ours["exit"] == 0:
             rc, wall, mib = timed([args.hexmesh, bike, "-o", os.path.join(work, "hexmesh_repeat"), "--force", "-q"] + options,
@@ -231,14 +232,12 @@ def main():
                 ours["runs_seconds"].append(wall)
                 ours["runs_peak_MiB"].append(mib)
         if snappy_ok:
-            case = os.path.join(work, "snappyHexMesh")
-            snappy = results["snappyHexMesh"]
-            rc = timed(["blockMesh"], case, os.path.join(work, "blockMesh_repeat.log"))[0]
+            rc = timed(["blockMesh"], snappy_case, os.path.join(work, "blockMesh_repeat.log"))[0]
             if rc == 0:
-                rc, wall, mib = timed(["snappyHexMesh", "-overwrite"], case, os.path.join(work, "snappyHexMesh_repeat.log"))
+                rc, wall, mib = timed(["snappyHexMesh", "-overwrite"], snappy_case, os.path.join(work, "snappyHexMesh_repeat.log"))
                 if rc == 0 and wall is not None:
-                    snappy["runs_seconds"].append(wall)
-                    snappy["runs_peak_MiB"].append(mib)
+                    results["snappyHexMesh"]["runs_seconds"].append(wall)
+                    results["snappyHexMesh"]["runs_peak_MiB"].append(mib)
     for r in (results.get("hexmesh", {}), results.get("snappyHexMesh", {})):
         if len(r.get("runs_seconds", [])) > 1 and None not in r["runs_seconds"]:
             r["seconds"] = statistics.median(r["runs_seconds"])
@@ -256,10 +255,11 @@ def main():
     json.dump(results, open(os.path.join(work, "results.json"), "w"), indent=1)
     # the table
     names = [n for n in ("hexmesh", "snappyHexMesh") if n in results]
+    median_of = f" (median of {args.repeat})" if args.repeat > 1 else ""
     rows = [("cells", lambda r: r["checkMesh"]["cells"]),
             ("checkMesh hexahedra (6 faces)", lambda r: r["checkMesh"]["hexahedra"]),
-            ("wall seconds" + (f" (median of {args.repeat})" if args.repeat > 1 else ""), lambda r: spread(r["seconds"], r["runs_seconds"], "%.2f")),
-            ("peak MiB" + (f" (median of {args.repeat})" if args.repeat > 1 else ""), lambda r: spread(r["peak_MiB"], r["runs_peak_MiB"], "%.0f")),
+            ("wall seconds" + median_of, lambda r: spread(r["seconds"], r["runs_seconds"], "%.2f")),
+            ("peak MiB" + median_of, lambda r: spread(r["peak_MiB"], r["runs_peak_MiB"], "%.0f")),
             ("checkMesh -allTopology", lambda r: r["checkMesh"]["allTopology"]),
             ("checkMesh -allTopology -allGeometry", lambda r: r["checkMesh"]["allGeometry"] + (f" ({len(r['checkMesh']['flags'])} flags)" if r["checkMesh"]["flags"] else "")),
             ("-allGeometry concave cells", lambda r: r["checkMesh"]["concave_cells"]),
