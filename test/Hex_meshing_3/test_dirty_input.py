@@ -256,6 +256,11 @@ MIN_SJ_03 = {"anchor", "anchor_dupflip", "bunny", "cube", "cube_nonmanifold", "c
 # for elephant-with-holes is the first of those made afterwards on its first staircase's grid
 # (the same mesh as its second capture before: one capture of that mesh)
 CAPTURE_RETRIED = {"elephant", "fandisk_crack", "rotor", "teapot"}
+# the feature paths searched again with the corners' edges kept for the curves leaving along them
+# (a chain had taken another curve's edge at a corner) and that search kept, in the capture kept:
+# fandisk's corner (0.4603, 0.1544, -0.0071) (also bunny and elephant, whose meshes it leaves as
+# they were or with the same figures; not asserted for them)
+CORNER_EDGES_KEPT = {"fandisk"}
 # feature fidelity, input->mesh / mesh->input in surface sizes: regression guards a little above
 # the figures of 2026-12-04 (anchor 0.35 / 0.64 with the feature pillows, 0.64 / 0.68 without;
 # t20_part 0.70 / 0.80; fandisk 1.02 / 8.47: a fillet of radius 1.75 s whose faces meet at more
@@ -288,8 +293,11 @@ CAPTURE_RETRIED = {"elephant", "fandisk_crack", "rotor", "teapot"}
 # 8 shifts anchor's input->mesh 0.23 - 0.62 -> 0.23 - 0.36, fandisk's 0.60 - 1.23 -> 0.59 - 0.71)
 # (the turn polish in sweeps until nothing moves, stop 57: anchor 0.26 / 0.51 -> 0.24 / 0.47, its
 # input -> mesh guard the goal again; fandisk 0.66 / 0.92 -> 0.65 / 0.92, t20_part 0.70 / 0.78 -> 0.70 / 0.75)
+# (stop 67: the paths searched again where a chain took the corner edge another curve leaves
+# along, `corner_edge_cosine`: fandisk 0.65 / 0.92 -> 0.65 / 0.63, its worst crease was at the corner
+# (0.4603, 0.1544, -0.0071))
 FEATURE_FIDELITY_FLOOR = {"anchor": (0.25, 0.5), "anchor_dupflip": (0.25, 0.5), "t20_part": (0.75, 0.8),
-                          "fandisk": (0.75, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
+                          "fandisk": (0.75, 0.7), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # the same within the report's angle tolerance (10 degrees), figures of 2026-12-04 at 8 sweeps:
 # anchor 0.31 / 0.69 (faces folded where a chain turns inside a face), t20_part 0.31 / 0.73,
 # fandisk 0.52 / 1.61 (its blend's 22.5 degree edges count as input creases; 0.66 / 0.85 with its
@@ -304,8 +312,9 @@ FEATURE_FIDELITY_FLOOR = {"anchor": (0.25, 0.5), "anchor_dupflip": (0.25, 0.5), 
 # (unsnapped feature vertices put back in joint moves: fandisk 0.27 / 0.92 -> 0.23 / 0.92; over the 8
 # shifts its input->mesh 0.26 - 0.61 -> 0.22 - 0.36)
 # (stop 57: anchor 0.26 / 0.51 -> 0.22 / 0.47, fandisk 0.23 / 0.92 -> 0.22 / 0.92, t20_part 0.35 / 0.54)
+# (stop 67, the corners' edges kept: fandisk 0.22 / 0.92 -> 0.19 / 0.63)
 FEATURE_FIDELITY_TOLERANT_FLOOR = {"anchor": (0.25, 0.5), "anchor_dupflip": (0.25, 0.5), "t20_part": (0.4, 0.7),
-                                   "fandisk": (0.25, 0.95), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
+                                   "fandisk": (0.25, 0.7), "cube": (0.05, 0.05), "cylinder": (0.1, 0.1)}
 # where the goal is not met yet: regression guards a little below the figures of 2026-12-02
 # (fandisk_crack rose from 0.030 to 0.202 when its crack stopped counting as a hole to cap)
 # (elephant-with-holes rose from 0.021 to 0.038 when surface vertices stopped sliding onto its holes' rims)
@@ -1095,6 +1104,9 @@ def main():
         retried = stem in CAPTURE_RETRIED
         check(b_["capture_choice"] < b_["capture_tries"] and (b_["capture_tries"] > 1) == retried,
               f"{stem}: {b_['capture_tries']} capture(s) run (more than one: {retried}), setting {b_['capture_choice']} kept")
+        if stem in CORNER_EDGES_KEPT:
+            check(b_["corner_edge_searches"] >= 1, f"{stem}: the paths searched again with the corners' edges kept "
+                                                    f"({b_['corner_edge_searches']} time(s) in the capture kept)")
         s_retried = stem in STAIRCASE_RETRIED
         check((b_["staircase_tries"] > 1) == s_retried and b_["staircase_tries"] <= 5 and not b_["far_faces_over_thin_parts"] and
               b_["staircase_gap"] in (0.4, 0.25, 0.2) and (s_retried or b_["staircase_gap"] == 0.4),

@@ -1987,9 +1987,13 @@ void test_body_fitted()
       assert(st1.removed_buffer_cells <= st0.removed_buffer_cells);
       assert(q1 >= (std::min)(q0, 0.35) - 1e-12 && n1 <= n0);
       assert(n1 < n0);   // and it does something
-      // fandisk's worst cell needs joint moves (`polish_patches()`): one vertex at a time left it
-      // at 0.105; its patch raises it to 0.123
-      if(std::string(file) == "data/fandisk.off") assert(st1.polish_patches > 0 && q1 > q0 + 0.01);
+      // fandisk's worst cell needed joint moves (`polish_patches()`): one vertex at a time left it
+      // at 0.105, its patch raised it to 0.123 (0.077 -> 0.132 at stop 66); since the corners'
+      // edges are kept for the curves leaving along them (stop 67, `corner_edge_cosine`) its
+      // worst cell is 0.154 before the polish, which keeps it there: the joint moves still run.
+      // eight's worst cell rises (0.247 -> 0.261)
+      if(std::string(file) == "data/fandisk.off") assert(st1.polish_patches > 0);
+      if(std::string(file) == "data/eight.off") assert(q1 > q0);
     }
     if(std::string(file) == "data/cube.off") {
       // every vertex reached the cube; its corners and edges are in the mesh exactly

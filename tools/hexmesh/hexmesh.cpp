@@ -987,7 +987,7 @@ int main(int argc, char** argv)
                            {"unsnapped_vertices", stats.unsnapped_vertices}, {"feature_joint_moves", stats.feature_joint_moves}, {"face_split_repairs", stats.face_split_repairs}, {"split_warp_repairs", stats.split_warp_repairs}, {"concave_repairs", stats.concave_repairs}, {"non_orthogonality_repairs", stats.non_orthogonality_repairs}, {"polish_moves", stats.polish_moves}, {"polish_patches", stats.polish_patches}, {"fidelity_moves", stats.fidelity_moves}, {"turn_moves", stats.turn_moves}, {"turn_far_moves", stats.turn_far_moves}, {"capture_tries", stats.capture_tries}, {"capture_choice", stats.capture_choice}, {"staircase_tries", stats.staircase_tries}, {"staircase_gap", stats.staircase_gap}, {"far_faces_over_thin_parts", stats.far_faces_over_thin_parts}, {"loosened_vertices", stats.loosened_vertices}, {"surface_vertices", stats.surface_vertices},
                            {"curve_vertices", stats.curve_vertices}, {"corner_vertices", stats.corner_vertices},
                            {"cap_vertices", stats.cap_vertices}, {"curves_captured", stats.curves_captured},
-                           {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"optimisation_passes", stats.optimisation_passes},
+                           {"curves_missed", stats.curves_missed}, {"curve_gaps", stats.curve_gaps}, {"corner_edge_searches", stats.corner_edge_searches}, {"optimisation_passes", stats.optimisation_passes},
                            {"unreached_vertices", stats.unreached_vertices.size()}, {"unreached_first_100", first_100(stats.unreached_vertices)}};
           j["boundary"]["removed_buffer_cells_first_100"] = first_100(stats.removed_buffer_cell_centres);
           {

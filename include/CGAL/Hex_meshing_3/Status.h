@@ -168,6 +168,7 @@ struct Meshing_statistics
   std::size_t curves_captured = 0;          ///< feature curves followed by a chain of mesh edges
   std::size_t curves_missed = 0;            ///< feature curves no chain was found for
   std::size_t curve_gaps = 0;               ///< ends of captured curves left 1.5 cells short (walled in by other curves at a corner, even when the curves left short or missed are searched first)
+  std::size_t corner_edge_searches = 0;     ///< captures whose feature paths were searched again with the corners' edges kept for the curves leaving along them (a chain had taken another curve's edge), and kept
   std::size_t optimisation_passes = 0;      ///< sweeps of the untangling / smoothing
   std::size_t removed_buffer_cells = 0;     ///< buffer cells that stayed invalid, removed (the staircase face is the boundary there)
   std::size_t unsnapped_vertices = 0;       ///< curve/corner vertices returned to the surface, or released into the volume, to untangle cells (they are brought back towards their feature afterwards, as far as their cells allow)

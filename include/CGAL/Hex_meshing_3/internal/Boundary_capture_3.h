@@ -511,6 +511,7 @@ public:
     double turn_penalty = 20;      ///< extra cost (x edge length) of a path turning inside a top face
     double curve_corridor = 3;     ///< a feature path keeps its vertices this close to its curve (x local size) ...
     double wide_curve_corridor = 6;   ///< ... or, if no path does, this close
+    double corner_edge_cosine = 0.5;  ///< at a corner where a chain took as its first edge the edge of the corner's vertex another curve leaves along (within this cosine of the curve's direction; 0: never), the paths are searched again with each curve's edge kept for it (`snap_features()`)
     double keep_quality = 0.2;     ///< a move may not take a cell below min(its quality, this)
     double min_valid_quality = 0.02;   ///< buffer cells below this after optimisation are removed
     double buffer_thickness = 0.5;     ///< the buffer's thickness the inner vertices aim at, x local size
@@ -1245,13 +1246,50 @@ private:
       std::vector<Vec3> missed_at;        // the missed curves' middle points
       std::vector<std::size_t> trouble;   // the curves missed or left with a gap
     };
+    // (`reserved`: per curve, the edges of its corners' vertices kept for it, by their far ends
+    // at its first and last corner; NONE: none. The other paths do not pass there; its own
+    // path need not, and leaves an end it did not take to the curves after it.)
+    std::vector<std::array<Index, 2>> reserved;
     auto search = [&](const std::vector<std::size_t>& order) {
       Search out;
       std::vector<char>& used = out.used;
       used.assign(P.size(), 0);
+      std::vector<std::uint8_t> keep_count;   // per vertex: the curves not searched yet that keep it
+      if(!reserved.empty()) {
+        keep_count.assign(P.size(), 0);
+        for(std::size_t c : order) for(Index w : reserved[c]) if(w != NONE && follow[c]) { ++keep_count[w]; used[w] = 1; }
+      }
       auto& captured = out.captured;
       for(std::size_t c : order) {
         if(!follow[c]) continue;
+        // this curve's kept edges open to it alone; afterwards kept for the curves still to come
+        // or taken by this one's path
+        struct Kept
+        {
+          const std::vector<std::array<Index, 2>>& reserved;
+          std::vector<std::uint8_t>& count;
+          std::vector<char>& used;
+          const std::vector<std::pair<std::size_t, std::vector<Piece>>>& captured;
+          std::size_t c;
+          Kept(const std::vector<std::array<Index, 2>>& r, std::vector<std::uint8_t>& n, std::vector<char>& u,
+               const std::vector<std::pair<std::size_t, std::vector<Piece>>>& cap, std::size_t curve)
+            : reserved(r), count(n), used(u), captured(cap), c(curve)
+          {
+            if(!reserved.empty()) for(Index w : reserved[c]) if(w != NONE) { --count[w]; used[w] = 0; }
+          }
+          ~Kept()
+          {
+            if(reserved.empty()) return;
+            for(Index w : reserved[c]) {
+              if(w == NONE) continue;
+              bool on_path = false;
+              if(!captured.empty() && captured.back().first == c)
+                for(const Piece& pc : captured.back().second)
+                  on_path = on_path || std::find(pc.path.begin(), pc.path.end(), w) != pc.path.end();
+              used[w] = on_path || count[w] > 0;
+            }
+          }
+        } kept(reserved, keep_count, used, captured, c);
         const auto& cv = curves[c];
         const std::vector<Vec3>& pts = cv.pts;
         // waypoints: the ends (corners), plus, for closed curves, three points around the loop
@@ -1274,8 +1312,7 @@ private:
         auto miss = [&]() { out.missed_at.push_back(pts[pts.size() / 2]); out.trouble.push_back(c); };
         if(!ok || wv.size() < 2) { miss(); continue; }
         // arc length of the curve at its vertices
-        std::vector<double> arc{0};
-        for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
+        const std::vector<double> arc = curve_arc(c);
         // a path that never turns inside a face if there is one, else one that turns as little as
         // it can; if none keeps within `curve_corridor` local sizes of the curve, one within
         // `wide_curve_corridor` (fine cells at a thin or acute part leave the buffer's vertices
@@ -1337,6 +1374,7 @@ private:
     std::vector<std::size_t> order(curves.size());
     std::iota(order.begin(), order.end(), std::size_t(0));
     Search found = search(order);
+    std::vector<std::size_t> found_order = order;
     if(!found.trouble.empty()) {
       std::vector<char> first(curves.size(), 0);
       for(std::size_t c : found.trouble) first[c] = 1;
@@ -1348,6 +1386,81 @@ private:
         std::sort(again.captured.begin(), again.captured.end(),
                   [](const auto& x, const auto& y) { return x.first < y.first; });
         found = std::move(again);
+        found_order = order;
+      }
+    }
+    // A curve searched early can leave its corner along the edge another curve of that corner
+    // leaves along: that curve then starts across a face (fandisk's corner (0.4603, 0.1544,
+    // -0.0071), whose vertex has edges along -x, -y, +z and +y: the curve along -z took the -x
+    // edge, and the -x curve's chain ran a row of faces off it, the mesh creased 0.92 surface
+    // sizes from any sharp edge). At each corner the curves are given the edges of the corner's
+    // vertex closest to their direction (the point one local size along the curve; greedy by
+    // cosine, at least `corner_edge_cosine`); where a chain took another curve's edge, the search
+    // runs again (in the order of the search kept) with the edges of those corners kept for their
+    // curves, and is kept if it misses no more curves and leaves no more gaps.
+    if(opt.corner_edge_cosine > 0) {
+      std::vector<std::vector<std::pair<std::size_t, int>>> at(corner_pts.size());   // corner -> its curves' ends
+      for(std::size_t c = 0; c < curves.size(); ++c)
+        if(follow[c] && !curves[c].closed) {
+          at[std::size_t(curves[c].c0)].push_back({c, 0});
+          at[std::size_t(curves[c].c1)].push_back({c, 1});
+        }
+      // the chains' first edges at their corners (their far ends; NONE: none)
+      std::vector<std::array<Index, 2>> first(curves.size(), {{NONE, NONE}});
+      for(const auto& cp : found.captured) {
+        const auto& cv = curves[cp.first];
+        if(cv.closed || cp.second.empty()) continue;
+        const auto& p0 = cp.second.front().path;
+        const auto& p1 = cp.second.back().path;
+        if(p0.size() > 1 && p0.front() == corner_vertex[std::size_t(cv.c0)]) first[cp.first][0] = p0[1];
+        if(p1.size() > 1 && p1.back() == corner_vertex[std::size_t(cv.c1)]) first[cp.first][1] = p1[p1.size() - 2];
+      }
+      std::vector<std::array<Index, 2>> keep(curves.size(), {{NONE, NONE}});
+      bool again = false;
+      for(std::size_t k = 0; k < corner_pts.size(); ++k) {
+        const Index v = corner_vertex[k];
+        if(v == NONE || at[k].size() < 2) continue;
+        struct Candidate { double cosine; std::size_t end; Index w; };
+        std::vector<Candidate> cand;
+        for(std::size_t e = 0; e < at[k].size(); ++e) {
+          const std::size_t c = at[k][e].first;
+          const std::vector<double> arc = curve_arc(c);
+          const double s = (std::min)(hloc[v], 0.5 * arc.back());
+          const Vec3 u = sub(point_at(c, arc, at[k][e].second == 0 ? s : arc.back() - s), P[v]);
+          const double lu = norm(u);
+          if(!(lu > 0)) continue;
+          for(Index w : snbrs[v]) {
+            if(kind[w] != SURFACE || !allowed[w]) continue;
+            const Vec3 dw = sub(P[w], P[v]);
+            const double ld = norm(dw);
+            if(ld > 0 && dot(u, dw) >= opt.corner_edge_cosine * lu * ld) cand.push_back({dot(u, dw) / (lu * ld), e, w});
+          }
+        }
+        std::sort(cand.begin(), cand.end(), [](const Candidate& a, const Candidate& b) {
+          return a.cosine > b.cosine || (a.cosine == b.cosine && (a.end < b.end || (a.end == b.end && a.w < b.w)));
+        });
+        std::vector<Index> given(at[k].size(), NONE);
+        for(const Candidate& cd : cand)
+          if(given[cd.end] == NONE && std::find(given.begin(), given.end(), cd.w) == given.end()) given[cd.end] = cd.w;
+        // another curve's chain took an edge given to a curve here
+        bool taken = false;
+        for(std::size_t e = 0; e < at[k].size() && !taken; ++e)
+          for(std::size_t o = 0; o < at[k].size() && given[e] != NONE && !taken; ++o)
+            taken = o != e && first[at[k][o].first][std::size_t(at[k][o].second)] == given[e];
+        if(!taken) continue;
+        again = true;
+        for(std::size_t e = 0; e < at[k].size(); ++e) keep[at[k][e].first][std::size_t(at[k][e].second)] = given[e];
+      }
+      if(again) {
+        reserved = std::move(keep);
+        Search kept_edges = search(found_order);
+        reserved.clear();
+        if(kept_edges.missed_at.size() <= found.missed_at.size() && kept_edges.gaps <= found.gaps) {
+          std::sort(kept_edges.captured.begin(), kept_edges.captured.end(),
+                    [](const auto& x, const auto& y) { return x.first < y.first; });
+          found = std::move(kept_edges);
+          ++rep.corner_edge_searches;
+        }
       }
     }
     std::vector<char>& used = found.used;
@@ -1363,8 +1476,7 @@ private:
     for(const auto& cp : captured) {
       const std::size_t c = cp.first;
       const auto& pieces = cp.second;
-      std::vector<double> arc{0};
-      for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
+      const std::vector<double> arc = curve_arc(c);
       // snap the path vertices onto the curve, spaced along it as they are along the path (a
       // closest-point snap could put two of them on one point)
       for(const Piece& piece : pieces) {
@@ -1902,6 +2014,13 @@ private:
     region_trees[r]->do_not_accelerate_distance_queries();
   }
 
+  // the arc length of curve c at its points (its segments' ends, from the first)
+  std::vector<double> curve_arc(std::size_t c) const
+  {
+    std::vector<double> arc{0};
+    for(const auto& sg : curve_segments[c]) arc.push_back(arc.back() + std::sqrt(CGAL::to_double(sg.squared_length())));
+    return arc;
+  }
   Vec3 point_at(std::size_t c, const std::vector<double>& arc, double s) const
   {
     const auto& segs = curve_segments[c];
