@@ -1257,39 +1257,24 @@ private:
       std::vector<std::uint8_t> keep_count;   // per vertex: the curves not searched yet that keep it
       if(!reserved.empty()) {
         keep_count.assign(P.size(), 0);
-        for(std::size_t c : order) for(Index w : reserved[c]) if(w != NONE && follow[c]) { ++keep_count[w]; used[w] = 1; }
+        for(std::size_t c : order) for(Index w : reserved[c]) if(w != NONE) { ++keep_count[w]; used[w] = 1; }
       }
       auto& captured = out.captured;
       for(std::size_t c : order) {
         if(!follow[c]) continue;
-        // this curve's kept edges open to it alone; afterwards kept for the curves still to come
-        // or taken by this one's path
+        // this curve's kept edges open to it alone; afterwards kept again for the curves still to
+        // come (a path this curve took has them in `used` already; a failed search cleared its own)
         struct Kept
         {
-          const std::vector<std::array<Index, 2>>& reserved;
+          const std::array<Index, 2> ends;
           std::vector<std::uint8_t>& count;
           std::vector<char>& used;
-          const std::vector<std::pair<std::size_t, std::vector<Piece>>>& captured;
-          std::size_t c;
-          Kept(const std::vector<std::array<Index, 2>>& r, std::vector<std::uint8_t>& n, std::vector<char>& u,
-               const std::vector<std::pair<std::size_t, std::vector<Piece>>>& cap, std::size_t curve)
-            : reserved(r), count(n), used(u), captured(cap), c(curve)
+          Kept(const std::array<Index, 2>& e, std::vector<std::uint8_t>& n, std::vector<char>& u) : ends(e), count(n), used(u)
           {
-            if(!reserved.empty()) for(Index w : reserved[c]) if(w != NONE) { --count[w]; used[w] = 0; }
+            for(Index w : ends) if(w != NONE) { --count[w]; used[w] = 0; }
           }
-          ~Kept()
-          {
-            if(reserved.empty()) return;
-            for(Index w : reserved[c]) {
-              if(w == NONE) continue;
-              bool on_path = false;
-              if(!captured.empty() && captured.back().first == c)
-                for(const Piece& pc : captured.back().second)
-                  on_path = on_path || std::find(pc.path.begin(), pc.path.end(), w) != pc.path.end();
-              used[w] = on_path || count[w] > 0;
-            }
-          }
-        } kept(reserved, keep_count, used, captured, c);
+          ~Kept() { for(Index w : ends) if(w != NONE && count[w] > 0) used[w] = 1; }
+        } kept(reserved.empty() ? std::array<Index, 2>{{NONE, NONE}} : reserved[c], keep_count, used);
         const auto& cv = curves[c];
         const std::vector<Vec3>& pts = cv.pts;
         // waypoints: the ends (corners), plus, for closed curves, three points around the loop
